@@ -1,0 +1,32 @@
+// Encoding of symbol_block(count) (bitstream-spec 5.1, 5.2): builds a frequency table from
+// the values, normalises it to 2^15, writes the table and the rANS payload.
+#ifndef M4D_ENCODER_ENTROPY_SYMBOL_BLOCK_WRITER_H_
+#define M4D_ENCODER_ENTROPY_SYMBOL_BLOCK_WRITER_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/byte_writer.h"
+#include "common/status.h"
+
+namespace m4d {
+
+// Normalises symbol counts to frequencies summing to 2^15, every used symbol getting at
+// least 1, close to minimum coded size. counts.size() is the alphabet size (>= 1).
+std::vector<uint32_t> NormalizeFrequencies(const std::vector<uint64_t>& counts);
+
+// rANS-encodes symbols (each < freqs.size(), with freqs[s] > 0) into the spec's payload.
+std::vector<uint8_t> RansEncode(const uint32_t* symbols, size_t count,
+                                const std::vector<uint32_t>& freqs);
+
+// Writes symbol_block(count) for the values. Fails with M4D_ERR_LIMIT if max - min + 1
+// exceeds the alphabet limit (4096) or a value's magnitude exceeds 2^23.
+Status WriteSymbolBlock(const int32_t* values, size_t count, ByteWriter* out);
+
+// Size in bytes WriteSymbolBlock would produce (for rate reports and decisions).
+size_t SymbolBlockSize(const int32_t* values, size_t count);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_ENTROPY_SYMBOL_BLOCK_WRITER_H_

@@ -1,0 +1,31 @@
+// Encoding of gaussian_set() (bitstream-spec 5.4, 5.5): our own uniform quantization per
+// attribute group, integer attributes coded losslessly by Draco.
+#ifndef M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
+#define M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
+
+#include "common/byte_writer.h"
+#include "common/status.h"
+#include "layers/gaussian_set.h"
+
+namespace m4d {
+
+// Bits per attribute group (0..24). Defaults keep rendering quality (peers: SPZ uses 24-bit
+// positions, 8-bit scales, opacity and colour, 4-5 bit higher SH).
+struct GaussianQuantization {
+  int position_bits = 16;
+  int log_scale_bits = 8;
+  int rotation_bits = 10;
+  int opacity_bits = 8;
+  int sh_dc_bits = 8;
+  int sh_rest_bits = 5;
+  // Draco encoder speed 0 (best) .. 10 (fastest); kd-tree below 10.
+  int draco_speed = 5;
+};
+
+// Writes gaussian_set() for `set` (its sh_degree must be the sequence's).
+Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                        ByteWriter* out);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_

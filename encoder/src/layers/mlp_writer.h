@@ -1,0 +1,18 @@
+// Encoding of MLP_WEIGHTS (bitstream-spec 4.3): per-tensor uniform quantization to at most
+// 12-bit integers, each tensor a symbol block.
+#ifndef M4D_ENCODER_LAYERS_MLP_WRITER_H_
+#define M4D_ENCODER_LAYERS_MLP_WRITER_H_
+
+#include "common/byte_writer.h"
+#include "common/status.h"
+#include "layers/mlp_weights.h"
+
+namespace m4d {
+
+// Writes the float weights (shapes as MlpShapes gives) quantized with `bits` (2..12) per
+// value, step = max |w| / (2^(bits-1) - 1) per tensor.
+Status WriteMlpWeights(const MlpWeights& weights, int bits, ByteWriter* out);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_LAYERS_MLP_WRITER_H_

@@ -1,0 +1,28 @@
+// Encoding of MOTION_GRID (bitstream-spec 4.4): quantization of a float grid
+// (Q(M) = floor(M / step + 0.5), paper section 5.1), brick flags and symbol blocks.
+#ifndef M4D_ENCODER_LAYERS_MOTION_GRID_WRITER_H_
+#define M4D_ENCODER_LAYERS_MOTION_GRID_WRITER_H_
+
+#include <vector>
+
+#include "common/byte_writer.h"
+#include "common/status.h"
+#include "layers/motion_config.h"
+
+namespace m4d {
+
+// A float motion grid as the encoder trains it; same layout as MotionGrid.values.
+struct FloatMotionGrid {
+  float box_min[3] = {0, 0, 0};
+  float box_scale[3] = {1, 1, 1};
+  float step[kMaxGridLevels] = {1.f / 64, 1.f / 64, 1.f / 64, 1.f / 64};
+  std::vector<float> values[kMaxGridLevels];  // [z][y][x][c]
+};
+
+// Quantizes and writes a MOTION_GRID payload. Quantized values are clamped to the range the
+// alphabet limit allows around zero (+-2047); box_scale must be positive and finite.
+Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, ByteWriter* out);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_LAYERS_MOTION_GRID_WRITER_H_

@@ -1,0 +1,32 @@
+// Constants and limits of the bitstream specification (bitstream-spec/README.md, section 8).
+#ifndef M4D_COMMON_SPEC_LIMITS_H_
+#define M4D_COMMON_SPEC_LIMITS_H_
+
+#include <cstddef>
+#include <cstdint>
+
+namespace m4d {
+
+constexpr uint32_t kMaxPayloadSize = 1u << 26;
+constexpr uint32_t kMaxGaussiansPerSet = 1u << 22;
+constexpr int kMaxGridLevels = 4;
+constexpr int kMaxGridChannels = 8;
+constexpr int kMaxGridResolution = 256;
+constexpr uint32_t kMaxGridValues = 1u << 24;
+constexpr int kMaxMlpHiddenLayers = 4;
+constexpr int kMaxMlpWidth = 256;
+constexpr uint32_t kMaxAlphabet = 4096;
+constexpr int kBrickSize = 8;
+constexpr int kRansPrecision = 15;
+constexpr uint32_t kRansTotal = 1u << kRansPrecision;
+constexpr uint32_t kRansLow = 1u << 23;
+constexpr int32_t kMaxSymbolMagnitude = 1 << 23;
+constexpr int kMaxAttributeBits = 24;
+constexpr int kMlpOutputs = 7;
+constexpr float kLeakyReluSlope = 0.01f;
+
+constexpr size_t kPacketHeaderSize = 24;
+
+}  // namespace m4d
+
+#endif  // M4D_COMMON_SPEC_LIMITS_H_

@@ -1,0 +1,20 @@
+// Motion application (bitstream-spec 6.3; paper section 3.3): trilinear lookup of the motion
+// grid at each dynamic Gaussian, the shared MLP, then translation and quaternion composition.
+// Normative float code: built with -ffp-contract=off; vectorised across Gaussians only.
+#ifndef M4D_DECODE_MOTION_APPLICATION_H_
+#define M4D_DECODE_MOTION_APPLICATION_H_
+
+#include "layers/gaussian_set.h"
+#include "layers/mlp_weights.h"
+#include "layers/motion_config.h"
+#include "layers/motion_grid.h"
+
+namespace m4d {
+
+// Moves every Gaussian of *set in place (positions and rotations), as spec 6.3 says.
+void ApplyMotion(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
+                 GaussianSet* set);
+
+}  // namespace m4d
+
+#endif  // M4D_DECODE_MOTION_APPLICATION_H_

@@ -1,0 +1,28 @@
+// Decoding of gaussian_set() (bitstream-spec 5.4, 5.5): quantization parameters, then a Draco
+// point cloud of integer attributes, dequantized with the spec's formula.
+#ifndef M4D_LAYERS_GAUSSIAN_SET_READER_H_
+#define M4D_LAYERS_GAUSSIAN_SET_READER_H_
+
+#include <cstdint>
+
+#include "common/byte_reader.h"
+#include "common/status.h"
+#include "layers/gaussian_set.h"
+
+namespace m4d {
+
+// Attribute groups of a Gaussian set, in coding order (spec 5.4).
+enum GaussianGroup { kGroupPosition, kGroupLogScale, kGroupRotation, kGroupOpacity, kGroupShDc,
+                     kGroupShRest, kNumGaussianGroups };
+
+// Number of components of a group for the given SH degree (0 for sh_rest at degree 0).
+int GaussianGroupComponents(int group, int sh_degree);
+
+// Reads one gaussian_set() from `reader`. `out` must have been constructed (with the caller's
+// allocator); its sh_degree is set to `sh_degree` and it is resized to the decoded count.
+// Counts above `max_count` fail with M4D_ERR_LIMIT before any allocation.
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, GaussianSet* out);
+
+}  // namespace m4d
+
+#endif  // M4D_LAYERS_GAUSSIAN_SET_READER_H_

@@ -1,0 +1,33 @@
+// MotionGrid: the decoded multi-resolution motion grid of one frame (bitstream-spec 4.4),
+// and its reader. Values stay quantized (int16); the step is applied after interpolation.
+#ifndef M4D_LAYERS_MOTION_GRID_H_
+#define M4D_LAYERS_MOTION_GRID_H_
+
+#include <cstdint>
+
+#include "common/byte_reader.h"
+#include "common/hooked_allocator.h"
+#include "common/status.h"
+#include "layers/motion_config.h"
+
+namespace m4d {
+
+struct MotionGrid {
+  MotionGrid() = default;
+  explicit MotionGrid(const M4dAllocator* hooks) {
+    for (auto& v : values) v = Buffer<int16_t>(HookedAllocator<int16_t>(hooks));
+  }
+  float box_min[3] = {0, 0, 0};
+  float box_scale[3] = {1, 1, 1};
+  float step[kMaxGridLevels] = {0, 0, 0, 0};
+  // values[l] holds G_l[z][y][x][c], R_l^3 * C_l entries, x fastest then channels innermost:
+  // index ((z * R + y) * R + x) * C + c.
+  Buffer<int16_t> values[kMaxGridLevels];
+};
+
+// Reads a MOTION_GRID payload into *grid (resizing its level buffers to the configuration).
+Status ReadMotionGrid(ByteReader* reader, const GridConfig& config, MotionGrid* grid);
+
+}  // namespace m4d
+
+#endif  // M4D_LAYERS_MOTION_GRID_H_
