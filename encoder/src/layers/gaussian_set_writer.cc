@@ -1,0 +1,318 @@
+// Encoding of gaussian_set() (bitstream-spec 5.4, 5.5).
+//
+// Draco's sequential method is used at every speed: its kd-tree method codes all attributes
+// in one tree with a common bit length and leaves the low bits raw, so with groups of
+// different widths (16-bit positions, 5-bit SH) it comes out larger than the raw values,
+// while the sequential method entropy-codes each attribute. The Gaussians are put in Morton
+// order of their quantized positions first, so that delta prediction works on positions.
+#include "layers/gaussian_set_writer.h"
+
+#include <draco/compression/config/compression_shared.h>
+#include <draco/compression/expert_encode.h>
+#include <draco/core/encoder_buffer.h>
+#include <draco/point_cloud/point_cloud.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/spec_limits.h"
+#include "layers/gaussian_set_reader.h"
+
+namespace m4d {
+namespace {
+
+// A group's values and how they are coded.
+struct GroupPlan {
+  int group = 0;
+  int components = 0;
+  const float* source = nullptr;  // component r of Gaussian i at source[i * stride + r]
+  size_t stride = 0;
+  int bits = 0;
+  bool per_component = false;
+  std::vector<float> min, step;  // one pair per component, or one for all
+  std::vector<uint32_t> q;       // [i][r] in coding order
+  bool delta = false;            // Draco prediction: difference, else none
+};
+
+Status InvalidArg(const std::string& what) {
+  return Status(M4D_ERR_INVALID_ARG, "WriteGaussianSet: " + what);
+}
+
+// Must match the reader (spec 5.5).
+draco::DataType DracoDataType(int bits) {
+  return bits <= 8 ? draco::DT_UINT8 : bits <= 16 ? draco::DT_UINT16 : draco::DT_UINT32;
+}
+
+int RequestedBits(int group, const GaussianQuantization& quantization) {
+  switch (group) {
+    case kGroupPosition:
+      return quantization.position_bits;
+    case kGroupLogScale:
+      return quantization.log_scale_bits;
+    case kGroupRotation:
+      return quantization.rotation_bits;
+    case kGroupOpacity:
+      return quantization.opacity_bits;
+    case kGroupShDc:
+      return quantization.sh_dc_bits;
+    default:
+      return quantization.sh_rest_bits;
+  }
+}
+
+void SetSource(const GaussianSet& set, GroupPlan* plan) {
+  const size_t sh_stride = static_cast<size_t>(set.sh_floats());
+  switch (plan->group) {
+    case kGroupPosition:
+      plan->source = set.positions.data();
+      plan->stride = 3;
+      break;
+    case kGroupLogScale:
+      plan->source = set.log_scales.data();
+      plan->stride = 3;
+      break;
+    case kGroupRotation:
+      plan->source = set.rotations.data();
+      plan->stride = 4;
+      break;
+    case kGroupOpacity:
+      plan->source = set.opacity_logits.data();
+      plan->stride = 1;
+      break;
+    case kGroupShDc:
+      plan->source = set.sh.data();
+      plan->stride = sh_stride;
+      break;
+    default:
+      plan->source = set.sh.data() + 3;
+      plan->stride = sh_stride;
+      break;
+  }
+}
+
+// Chooses bits, per_component and (min, step). Positions get a range per axis; the other
+// groups share one step across components, which gives every component the same absolute
+// error (the lowest total squared error for the rate). A group whose components are each
+// constant costs nothing: bits 0 and one min per component.
+Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
+  const int c = plan->components;
+  std::vector<float> lo(c), hi(c);
+  for (int r = 0; r < c; ++r) {
+    float a = plan->source[r], b = plan->source[r];
+    for (size_t i = 0; i < n; ++i) {
+      const float v = plan->source[i * plan->stride + r];
+      if (!std::isfinite(v)) {
+        return InvalidArg("non-finite value in group " + std::to_string(plan->group));
+      }
+      a = std::min(a, v);
+      b = std::max(b, v);
+    }
+    lo[r] = a;
+    hi[r] = b;
+  }
+  bool constant = true;
+  for (int r = 0; r < c; ++r) constant = constant && lo[r] == hi[r];
+  plan->per_component = plan->group == kGroupPosition || constant;
+  plan->bits = constant ? 0 : requested_bits;
+  if (!plan->per_component) {
+    lo.assign(1, *std::min_element(lo.begin(), lo.end()));
+    hi.assign(1, *std::max_element(hi.begin(), hi.end()));
+  }
+  const double levels = std::ldexp(1.0, plan->bits) - 1.0;
+  for (size_t p = 0; p < lo.size(); ++p) {
+    const float step =
+        plan->bits > 0 ? static_cast<float>((static_cast<double>(hi[p]) - lo[p]) / levels) : 0.0f;
+    if (!std::isfinite(step)) {
+      return InvalidArg("value range too large in group " + std::to_string(plan->group));
+    }
+    plan->min.push_back(lo[p]);
+    plan->step.push_back(step);
+  }
+  return Status::Ok();
+}
+
+// q = clamp(round((v - min) / step)) in Gaussian order `order`; the step used is the f32
+// transmitted, so that the decoder's min + q * step lands within step / 2 of v.
+void Quantize(const std::vector<uint32_t>& order, GroupPlan* plan) {
+  const int c = plan->components;
+  const double q_max = std::ldexp(1.0, plan->bits) - 1.0;
+  plan->q.resize(order.size() * static_cast<size_t>(c));
+  uint32_t* q = plan->q.data();
+  for (uint32_t i : order) {
+    const float* v = plan->source + i * plan->stride;
+    for (int r = 0; r < c; ++r, ++q) {
+      const int p = plan->per_component ? r : 0;
+      if (plan->step[p] == 0.0f) {
+        *q = 0;
+        continue;
+      }
+      const double x = std::round((static_cast<double>(v[r]) - plan->min[p]) / plan->step[p]);
+      *q = static_cast<uint32_t>(std::min(std::max(x, 0.0), q_max));
+    }
+  }
+}
+
+// Spreads the low 21 bits of v to every third bit.
+uint64_t SpreadBits(uint32_t v) {
+  uint64_t x = v & 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+// Coding order: Morton order of the quantized positions (their top 21 bits per axis).
+std::vector<uint32_t> CodingOrder(size_t n, const GroupPlan& position) {
+  std::vector<uint32_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(i);
+  if (position.bits == 0) return order;
+  GroupPlan quantized = position;
+  Quantize(order, &quantized);
+  const int shift = std::max(0, position.bits - 21);
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t* q = &quantized.q[3 * i];
+    const uint64_t key = SpreadBits(q[0] >> shift) | (SpreadBits(q[1] >> shift) << 1) |
+                         (SpreadBits(q[2] >> shift) << 2);
+    keyed[i] = {key, static_cast<uint32_t>(i)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+  return order;
+}
+
+// Empirical entropy in bits of a histogram.
+double Entropy(const std::vector<uint32_t>& histogram, size_t total) {
+  double bits = 0;
+  for (uint32_t count : histogram) {
+    if (count > 0) bits -= count * std::log2(static_cast<double>(count) / total);
+  }
+  return bits;
+}
+
+// Draco codes an attribute's values (prediction none) or its wrapped differences to the
+// previous Gaussian (prediction difference) with one entropy table; keep the cheaper one.
+// Wide groups are positions in practice, where differences always win.
+bool PreferDelta(const GroupPlan& plan) {
+  if (plan.bits > 16) return true;
+  const auto [lo_it, hi_it] = std::minmax_element(plan.q.begin(), plan.q.end());
+  const int64_t lo = *lo_it, span = *hi_it - lo + 1;
+  // Draco's wrap transform keeps corrections in [-(span / 2), max_correction].
+  const int64_t max_correction = span / 2 - (span % 2 == 0 ? 1 : 0);
+  std::vector<uint32_t> plain(static_cast<size_t>(span)), diff(static_cast<size_t>(2 * span));
+  const size_t c = static_cast<size_t>(plan.components);
+  for (size_t k = 0; k < plan.q.size(); ++k) {
+    ++plain[plan.q[k] - lo];
+    int64_t d = static_cast<int64_t>(plan.q[k]) - (k >= c ? plan.q[k - c] : lo);
+    if (d > max_correction) d -= span;
+    if (d < -(span / 2)) d += span;
+    ++diff[static_cast<size_t>(d >= 0 ? 2 * d : -2 * d - 1)];
+  }
+  return Entropy(diff, plan.q.size()) < Entropy(plain, plan.q.size());
+}
+
+template <typename T>
+void StoreValues(const std::vector<uint32_t>& q, draco::DataBuffer* buffer) {
+  std::vector<T> values(q.begin(), q.end());
+  buffer->Write(0, values.data(), values.size() * sizeof(T));
+}
+
+Status EncodeDraco(size_t n, const std::vector<GroupPlan*>& coded, int speed,
+                   draco::EncoderBuffer* out) {
+  draco::PointCloud pc;
+  pc.set_num_points(static_cast<uint32_t>(n));
+  for (const GroupPlan* plan : coded) {
+    const draco::DataType type = DracoDataType(plan->bits);
+    draco::GeometryAttribute attribute;
+    attribute.Init(plan->group == kGroupPosition ? draco::GeometryAttribute::POSITION
+                                                 : draco::GeometryAttribute::GENERIC,
+                   nullptr, static_cast<uint8_t>(plan->components), type, false,
+                   draco::DataTypeLength(type) * plan->components, 0);
+    const int id = pc.AddAttribute(attribute, true, static_cast<uint32_t>(n));
+    draco::DataBuffer* buffer = pc.attribute(id)->buffer();
+    if (type == draco::DT_UINT8) {
+      StoreValues<uint8_t>(plan->q, buffer);
+    } else if (type == draco::DT_UINT16) {
+      StoreValues<uint16_t>(plan->q, buffer);
+    } else {
+      StoreValues<uint32_t>(plan->q, buffer);
+    }
+  }
+  draco::ExpertEncoder encoder(pc);
+  encoder.SetSpeedOptions(speed, speed);
+  encoder.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
+  for (size_t j = 0; j < coded.size(); ++j) {
+    const draco::Status status = encoder.SetAttributePredictionScheme(
+        static_cast<int32_t>(j),
+        coded[j]->delta ? draco::PREDICTION_DIFFERENCE : draco::PREDICTION_NONE);
+    if (!status.ok()) return InvalidArg(std::string("Draco: ") + status.error_msg());
+  }
+  const draco::Status status = encoder.EncodeToBuffer(out);
+  if (!status.ok()) return InvalidArg(std::string("Draco: ") + status.error_msg());
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                        ByteWriter* out) {
+  if (set.sh_degree < 0 || set.sh_degree > 3) return InvalidArg("SH degree outside 0..3");
+  const size_t n = set.size();
+  if (set.positions.size() != 3 * n || set.log_scales.size() != 3 * n ||
+      set.rotations.size() != 4 * n || set.sh.size() != static_cast<size_t>(set.sh_floats()) * n) {
+    return InvalidArg("array sizes do not match the count");
+  }
+  if (n > kMaxGaussiansPerSet) return InvalidArg("more than 2^22 Gaussians");
+  if (quantization.draco_speed < 0 || quantization.draco_speed > 10) {
+    return InvalidArg("draco_speed outside 0..10");
+  }
+  for (int group = 0; group < kNumGaussianGroups; ++group) {
+    const int bits = RequestedBits(group, quantization);
+    if (bits < 0 || bits > kMaxAttributeBits) return InvalidArg("bits outside 0..24");
+  }
+  if (n == 0) {
+    out->WriteVarUint(0);
+    return Status::Ok();
+  }
+  std::vector<GroupPlan> plans;
+  for (int group = 0; group < kNumGaussianGroups; ++group) {
+    GroupPlan plan;
+    plan.group = group;
+    plan.components = GaussianGroupComponents(group, set.sh_degree);
+    if (plan.components == 0) continue;
+    SetSource(set, &plan);
+    M4D_RETURN_IF_ERROR(PlanQuantization(n, RequestedBits(group, quantization), &plan));
+    plans.push_back(std::move(plan));
+  }
+
+  const std::vector<uint32_t> order = CodingOrder(n, plans[kGroupPosition]);
+  std::vector<GroupPlan*> coded;
+  for (GroupPlan& plan : plans) {
+    if (plan.bits == 0) continue;
+    Quantize(order, &plan);
+    plan.delta = PreferDelta(plan);
+    coded.push_back(&plan);
+  }
+  draco::EncoderBuffer draco_buffer;
+  M4D_RETURN_IF_ERROR(EncodeDraco(n, coded, quantization.draco_speed, &draco_buffer));
+
+  out->WriteVarUint(static_cast<uint32_t>(n));
+  for (const GroupPlan& plan : plans) {
+    out->WriteU8(static_cast<uint8_t>(plan.bits));
+    out->WriteU8(plan.per_component ? 1 : 0);
+    for (size_t p = 0; p < plan.min.size(); ++p) {
+      out->WriteF32(plan.min[p]);
+      out->WriteF32(plan.step[p]);
+    }
+  }
+  out->WriteVarUint(static_cast<uint32_t>(draco_buffer.size()));
+  out->WriteBytes(reinterpret_cast<const uint8_t*>(draco_buffer.data()), draco_buffer.size());
+  return Status::Ok();
+}
+
+}  // namespace m4d

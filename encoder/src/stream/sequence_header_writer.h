@@ -1,0 +1,15 @@
+// Serialisation of the SEQUENCE_HEADER payload (bitstream-spec 4.1).
+#ifndef M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
+#define M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
+
+#include "bitstream/sequence_header.h"
+#include "common/byte_writer.h"
+
+namespace m4d {
+
+// Validates the header (ranges of spec 4.1) and writes it.
+Status WriteSequenceHeader(const SequenceHeader& header, ByteWriter* out);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_

@@ -1,0 +1,111 @@
+#include "stream/stream_writer.h"
+
+#include <string>
+
+#include "bitstream/packet_header.h"
+#include "common/byte_writer.h"
+#include "common/spec_limits.h"
+#include "entropy/symbol_block_writer.h"
+#include "layers/mlp_writer.h"
+#include "stream/sequence_header_writer.h"
+
+namespace m4d {
+namespace {
+
+DecoderOptions ClosedLoopOptions() {
+  DecoderOptions options;
+  options.layers = M4D_LAYER_ALL;
+  return options;
+}
+
+}  // namespace
+
+StreamWriter::StreamWriter(const StreamWriterOptions& options)
+    : options_(options), decoder_(ClosedLoopOptions()) {}
+
+Status StreamWriter::Emit(uint8_t type, bool end_of_frame, const std::vector<uint8_t>& payload) {
+  if (payload.size() > kMaxPayloadSize) {
+    return LimitError("packet payload of " + std::to_string(payload.size()) + " bytes");
+  }
+  const size_t start = bytes_.size();
+  AppendPacket(type, next_frame_, end_of_frame, payload.data(), payload.size(), &bytes_);
+  current_.by_type[type] += bytes_.size() - start;
+  // Closed loop: the SDK decodes what was just written.
+  return decoder_.SendPacket(bytes_.data() + start, bytes_.size() - start);
+}
+
+Status StreamWriter::TakeReconstruction(DecodedFrame* recon) {
+  if (!decoder_.HasFrame()) return Status(M4D_ERR_BITSTREAM, "writer: frame not completed");
+  DecodedFrame frame = decoder_.TakeFrame();
+  if (recon) *recon = std::move(frame);
+  last_frame_ = current_;
+  current_ = PacketBytes();
+  ++next_frame_;
+  return Status::Ok();
+}
+
+Status StreamWriter::WriteKeyframe(const GaussianSet& static_set, const GaussianSet& dynamic_set,
+                                   const MlpWeights& mlp, DecodedFrame* recon) {
+  const int sh = options_.sequence.sh_degree;
+  if (static_set.sh_degree != sh || dynamic_set.sh_degree != sh) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: set SH degree differs from the sequence's");
+  }
+  if (motion_written_) return Status(M4D_ERR_INVALID_ARG, "writer: inter frame not finished");
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  M4D_RETURN_IF_ERROR(WriteSequenceHeader(options_.sequence, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_SEQUENCE_HEADER, false, payload));
+
+  payload.clear();
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(static_set, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_STATIC, false, payload));
+
+  payload.clear();
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(dynamic_set, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_DYNAMIC, false, payload));
+
+  payload.clear();
+  M4D_RETURN_IF_ERROR(WriteMlpWeights(mlp, options_.mlp_bits, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MLP_WEIGHTS, true, payload));
+  gop_open_ = true;
+  return TakeReconstruction(recon);
+}
+
+Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
+  if (!gop_open_ || motion_written_) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: motion needs an open GOP and a finished frame");
+  }
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  M4D_RETURN_IF_ERROR(WriteMotionGrid(options_.sequence.grid, grid, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MOTION_GRID, false, payload));
+  motion_written_ = true;
+  return Status::Ok();
+}
+
+Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,
+                                       const GaussianSet& added, DecodedFrame* recon) {
+  if (!motion_written_) return Status(M4D_ERR_INVALID_ARG, "writer: compensation before motion");
+  if (removed.size() != moved_dynamic_set().size()) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: removal flags do not match the dynamic set");
+  }
+  if (added.sh_degree != options_.sequence.sh_degree) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: set SH degree differs from the sequence's");
+  }
+  std::vector<int32_t> flags(removed.size());
+  uint32_t num_removed = 0;
+  for (size_t i = 0; i < removed.size(); ++i) {
+    flags[i] = removed[i] ? 1 : 0;
+    num_removed += static_cast<uint32_t>(flags[i]);
+  }
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  writer.WriteVarUint(num_removed);
+  if (num_removed > 0) M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), &writer));
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(added, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_COMPENSATION, true, payload));
+  motion_written_ = false;
+  return TakeReconstruction(recon);
+}
+
+}  // namespace m4d

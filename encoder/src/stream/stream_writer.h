@@ -1,0 +1,75 @@
+// StreamWriter: turns in-memory keyframe sets, MLP weights, motion grids and compensation
+// into packets, and decodes every packet it writes with the SDK's own Decoder, so the encoder
+// continues from exactly what any conforming decoder reconstructs (closed loop).
+#ifndef M4D_ENCODER_STREAM_STREAM_WRITER_H_
+#define M4D_ENCODER_STREAM_STREAM_WRITER_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "bitstream/sequence_header.h"
+#include "decode/decoder.h"
+#include "layers/gaussian_set_writer.h"
+#include "layers/mlp_weights.h"
+#include "layers/motion_grid_writer.h"
+
+namespace m4d {
+
+struct StreamWriterOptions {
+  SequenceHeader sequence;
+  GaussianQuantization quantization;
+  int mlp_bits = 12;
+};
+
+// Bytes written per packet type (index = M4dPacketType), packet headers included.
+struct PacketBytes {
+  std::array<size_t, 7> by_type{};
+  size_t total() const {
+    size_t t = 0;
+    for (size_t b : by_type) t += b;
+    return t;
+  }
+};
+
+class StreamWriter {
+ public:
+  explicit StreamWriter(const StreamWriterOptions& options);
+
+  // Starts a GOP: SEQUENCE_HEADER, KEYFRAME_STATIC, KEYFRAME_DYNAMIC, MLP_WEIGHTS. The sets'
+  // sh_degree must be the sequence's. *recon receives the decoded keyframe.
+  Status WriteKeyframe(const GaussianSet& static_set, const GaussianSet& dynamic_set,
+                       const MlpWeights& mlp, DecodedFrame* recon);
+
+  // First packet of an inter frame. Afterwards moved_dynamic_set() is the decoder's dynamic
+  // set after this motion, which the compensation refers to.
+  Status WriteMotion(const FloatMotionGrid& grid);
+  const GaussianSet& moved_dynamic_set() const { return *decoder_.dynamic_set(); }
+
+  // Second packet of an inter frame: `removed` holds one flag per Gaussian of
+  // moved_dynamic_set() (non-zero = remove), `added` the compensated Gaussians.
+  Status WriteCompensation(const std::vector<uint8_t>& removed, const GaussianSet& added,
+                           DecodedFrame* recon);
+
+  const std::vector<uint8_t>& bytes() const { return bytes_; }
+  // Bytes of the last complete frame, by packet type.
+  const PacketBytes& last_frame_bytes() const { return last_frame_; }
+  uint32_t next_frame_index() const { return next_frame_; }
+
+ private:
+  Status Emit(uint8_t type, bool end_of_frame, const std::vector<uint8_t>& payload);
+  Status TakeReconstruction(DecodedFrame* recon);
+
+  StreamWriterOptions options_;
+  Decoder decoder_;
+  std::vector<uint8_t> bytes_;
+  PacketBytes current_;
+  PacketBytes last_frame_;
+  uint32_t next_frame_ = 0;
+  bool gop_open_ = false;
+  bool motion_written_ = false;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_STREAM_STREAM_WRITER_H_

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Configures and builds the Release tree (build/release) with warnings as errors.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DM4D_WERROR=ON >/dev/null
+cmake --build build/release

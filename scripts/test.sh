@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The test command: installs dependencies, builds, checks formatting, checks that a clang
+# Debug build decodes bit-identically to the gcc Release build, runs a short fuzz session,
+# then runs the whole test suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+scripts/setup.sh
+scripts/build.sh
+scripts/check_format.sh
+scripts/compare_builds.sh
+scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
+ctest --test-dir build/release --output-on-failure -j2

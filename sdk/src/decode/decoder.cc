@@ -1,0 +1,306 @@
+#include "decode/decoder.h"
+
+#include <string>
+#include <utility>
+
+#include "common/byte_reader.h"
+#include "common/crc32.h"
+#include "common/spec_limits.h"
+#include "decode/motion_application.h"
+#include "entropy/symbol_block_reader.h"
+#include "layers/gaussian_set_reader.h"
+
+namespace m4d {
+namespace {
+
+const char* PacketName(uint8_t type) {
+  switch (type) {
+    case M4D_PACKET_SEQUENCE_HEADER: return "SEQUENCE_HEADER";
+    case M4D_PACKET_KEYFRAME_STATIC: return "KEYFRAME_STATIC";
+    case M4D_PACKET_KEYFRAME_DYNAMIC: return "KEYFRAME_DYNAMIC";
+    case M4D_PACKET_MLP_WEIGHTS: return "MLP_WEIGHTS";
+    case M4D_PACKET_MOTION_GRID: return "MOTION_GRID";
+    case M4D_PACKET_COMPENSATION: return "COMPENSATION";
+    default: return "unknown";
+  }
+}
+
+Status RequireConsumed(const ByteReader& reader, const char* what) {
+  if (reader.remaining() != 0) {
+    return BitstreamError(std::string(what) + ": " + std::to_string(reader.remaining()) +
+                          " bytes left after the payload's syntax");
+  }
+  return Status::Ok();
+}
+
+// Keeps the Gaussians whose flag is 0, in order (spec 6.4).
+template <typename T>
+void CompactRows(Buffer<T>* values, size_t width, const int32_t* removed, size_t count) {
+  size_t out = 0;
+  for (size_t i = 0; i < count; ++i) {
+    if (removed[i]) continue;
+    if (out != i) {
+      for (size_t k = 0; k < width; ++k) (*values)[out * width + k] = (*values)[i * width + k];
+    }
+    ++out;
+  }
+  values->resize(out * width);
+}
+
+void AppendSet(const GaussianSet& added, GaussianSet* set) {
+  set->positions.insert(set->positions.end(), added.positions.begin(), added.positions.end());
+  set->log_scales.insert(set->log_scales.end(), added.log_scales.begin(), added.log_scales.end());
+  set->rotations.insert(set->rotations.end(), added.rotations.begin(), added.rotations.end());
+  set->opacity_logits.insert(set->opacity_logits.end(), added.opacity_logits.begin(),
+                             added.opacity_logits.end());
+  set->sh.insert(set->sh.end(), added.sh.begin(), added.sh.end());
+}
+
+}  // namespace
+
+Decoder::Decoder(const DecoderOptions& options) : options_(options), grid_(options.allocator) {}
+
+uint32_t Decoder::MaxGaussians() const {
+  return (options_.max_gaussians == 0 || options_.max_gaussians > kMaxGaussiansPerSet)
+             ? kMaxGaussiansPerSet
+             : options_.max_gaussians;
+}
+
+void Decoder::Reset() {
+  stage_ = Stage::kNeedSequenceHeader;
+  static_.reset();
+  dynamic_.reset();
+  mlp_ = MlpWeights();
+}
+
+void Decoder::Flush() {
+  Reset();
+  has_frame_ = false;
+  frame_ = DecodedFrame();
+}
+
+void Decoder::SetBackground(std::shared_ptr<const GaussianSet> background) {
+  background_ = std::move(background);
+}
+
+DecodedFrame Decoder::TakeFrame() {
+  has_frame_ = false;
+  return std::exchange(frame_, DecodedFrame());
+}
+
+Status Decoder::SendPacket(const uint8_t* data, size_t size) {
+  PacketHeader header;
+  Status status = ParsePacketHeader(data, size, &header);
+  if (status.code() == M4D_ERR_AGAIN) status = BitstreamError("packet shorter than its header");
+  if (status.ok() && size - kPacketHeaderSize != header.payload_size) {
+    status = BitstreamError("packet of " + std::to_string(size) + " bytes declares a payload of " +
+                            std::to_string(header.payload_size) + " bytes");
+  }
+  if (status.ok()) status = Dispatch(header, data + kPacketHeaderSize);
+  if (!status.ok()) Reset();
+  return status;
+}
+
+Status Decoder::CheckOrder(const PacketHeader& h) {
+  const char* name = PacketName(h.type);
+  auto order_error = [&](const std::string& why) {
+    return BitstreamError(std::string(name) + " (frame " + std::to_string(h.frame_index) +
+                          "): " + why);
+  };
+  const bool last_of_frame =
+      h.type == M4D_PACKET_MLP_WEIGHTS || h.type == M4D_PACKET_COMPENSATION;
+  if (h.end_of_frame() != last_of_frame) return order_error("wrong end_of_frame flag");
+  switch (h.type) {
+    case M4D_PACKET_KEYFRAME_STATIC:
+      if (stage_ != Stage::kKeyframeStart) return order_error("not after a SEQUENCE_HEADER");
+      break;
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      if (stage_ != Stage::kKeyframeStart && stage_ != Stage::kKeyframeStatic) {
+        return order_error("not after a SEQUENCE_HEADER or KEYFRAME_STATIC");
+      }
+      break;
+    case M4D_PACKET_MLP_WEIGHTS:
+      if (stage_ != Stage::kKeyframeDynamic) return order_error("not after KEYFRAME_DYNAMIC");
+      break;
+    case M4D_PACKET_MOTION_GRID:
+      if (stage_ != Stage::kInter) return order_error("not after a complete frame");
+      if (h.frame_index != frame_index_ + 1) return order_error("frame index not consecutive");
+      return Status::Ok();
+    case M4D_PACKET_COMPENSATION:
+      if (stage_ != Stage::kMotion) return order_error("not after MOTION_GRID");
+      break;
+    default:
+      return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
+  }
+  if (h.frame_index != frame_index_) return order_error("frame index differs within a frame");
+  return Status::Ok();
+}
+
+Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
+  if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_COMPENSATION) {
+    return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
+  }
+  if (h.type != M4D_PACKET_SEQUENCE_HEADER && stage_ == Stage::kNeedSequenceHeader) {
+    // No configuration yet (stream start, flush or error): skip until the next GOP (spec 6.1).
+    if (options_.log) {
+      options_.log(M4D_LOG_INFO, std::string("skipping ") + PacketName(h.type) + " of frame " +
+                                     std::to_string(h.frame_index) + " until a SEQUENCE_HEADER");
+    }
+    return Status::Ok();
+  }
+  if (h.type != M4D_PACKET_SEQUENCE_HEADER) M4D_RETURN_IF_ERROR(CheckOrder(h));
+
+  const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC;
+  const bool decode = h.type == M4D_PACKET_SEQUENCE_HEADER
+                          ? true
+                          : (is_static ? wants(M4D_LAYER_STATIC) && !background_
+                                       : wants(M4D_LAYER_DYNAMIC));
+  if (decode && options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
+    return Status(M4D_ERR_CHECKSUM, std::string(PacketName(h.type)) + " (frame " +
+                                        std::to_string(h.frame_index) + "): payload CRC mismatch");
+  }
+  const size_t size = h.payload_size;
+  switch (h.type) {
+    case M4D_PACKET_SEQUENCE_HEADER:
+      return DecodeSequenceHeader(h, payload);
+    case M4D_PACKET_KEYFRAME_STATIC:
+      if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, true));
+      stage_ = Stage::kKeyframeStatic;
+      return Status::Ok();
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, false));
+      stage_ = Stage::kKeyframeDynamic;
+      return Status::Ok();
+    case M4D_PACKET_MLP_WEIGHTS:
+      if (decode) M4D_RETURN_IF_ERROR(DecodeMlp(payload, size));
+      stage_ = Stage::kInter;
+      EmitFrame(h.frame_index, true);
+      return Status::Ok();
+    case M4D_PACKET_MOTION_GRID:
+      if (decode) M4D_RETURN_IF_ERROR(DecodeMotion(payload, size));
+      frame_index_ = h.frame_index;
+      stage_ = Stage::kMotion;
+      return Status::Ok();
+    default:  // M4D_PACKET_COMPENSATION (CheckOrder rejected every other type)
+      if (decode) M4D_RETURN_IF_ERROR(DecodeCompensation(payload, size));
+      stage_ = Stage::kInter;
+      EmitFrame(h.frame_index, false);
+      return Status::Ok();
+  }
+}
+
+Status Decoder::DecodeSequenceHeader(const PacketHeader& h, const uint8_t* payload) {
+  Reset();
+  if (options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
+    return Status(M4D_ERR_CHECKSUM, "SEQUENCE_HEADER: payload CRC mismatch");
+  }
+  ByteReader reader(payload, h.payload_size);
+  const uint32_t max_grid = options_.max_grid_values == 0 ? kMaxGridValues
+                                                          : options_.max_grid_values;
+  M4D_RETURN_IF_ERROR(ReadSequenceHeader(&reader, max_grid, &sequence_));
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "SEQUENCE_HEADER"));
+  auto empty_static = std::make_shared<GaussianSet>(options_.allocator);
+  empty_static->sh_degree = sequence_.sh_degree;
+  static_ = std::move(empty_static);  // stays empty in foreground-only streams
+  dynamic_ = std::make_shared<GaussianSet>(options_.allocator);
+  dynamic_->sh_degree = sequence_.sh_degree;
+  frame_index_ = h.frame_index;
+  stage_ = Stage::kKeyframeStart;
+  return Status::Ok();
+}
+
+Status Decoder::DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_static) {
+  auto set = std::make_shared<GaussianSet>(options_.allocator);
+  ByteReader reader(payload, size);
+  const char* what = is_static ? "KEYFRAME_STATIC" : "KEYFRAME_DYNAMIC";
+  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, MaxGaussians(), set.get());
+  if (!status.ok()) return Status(status.code(), std::string(what) + ": " + status.message());
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, what));
+  if (is_static) {
+    static_ = std::move(set);
+  } else {
+    dynamic_ = std::move(set);
+  }
+  return Status::Ok();
+}
+
+Status Decoder::DecodeMlp(const uint8_t* payload, size_t size) {
+  ByteReader reader(payload, size);
+  Status status = ReadMlpWeights(&reader, sequence_.grid.feature_count(), sequence_.mlp, &mlp_);
+  if (!status.ok()) return Status(status.code(), "MLP_WEIGHTS: " + status.message());
+  return RequireConsumed(reader, "MLP_WEIGHTS");
+}
+
+GaussianSet* Decoder::MutableDynamicSet() {
+  // Frames handed out share the set; copy it only while a caller still holds one.
+  if (dynamic_.use_count() > 1) dynamic_ = std::make_shared<GaussianSet>(*dynamic_);
+  return dynamic_.get();
+}
+
+Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
+  ByteReader reader(payload, size);
+  Status status = ReadMotionGrid(&reader, sequence_.grid, &grid_);
+  if (!status.ok()) return Status(status.code(), "MOTION_GRID: " + status.message());
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MOTION_GRID"));
+  ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet());
+  return Status::Ok();
+}
+
+Status Decoder::DecodeCompensation(const uint8_t* payload, size_t size) {
+  ByteReader reader(payload, size);
+  const uint32_t n = static_cast<uint32_t>(dynamic_->size());
+  uint32_t num_removed = 0;
+  if (!reader.ReadVarUint(&num_removed)) return BitstreamError("COMPENSATION: truncated");
+  if (num_removed > n) return BitstreamError("COMPENSATION: removes more Gaussians than exist");
+  Buffer<int32_t> removed{HookedAllocator<int32_t>(options_.allocator)};
+  if (num_removed > 0) {
+    removed.resize(n);
+    Status status = ReadSymbolBlock(&reader, n, 0, 1, removed.data());
+    if (!status.ok()) return Status(status.code(), "COMPENSATION: " + status.message());
+    uint32_t ones = 0;
+    for (int32_t flag : removed) ones += static_cast<uint32_t>(flag);
+    if (ones != num_removed) return BitstreamError("COMPENSATION: removal count mismatch");
+  }
+  GaussianSet added(options_.allocator);
+  const uint32_t max = MaxGaussians();
+  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, max, &added);
+  if (!status.ok()) return Status(status.code(), "COMPENSATION: " + status.message());
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "COMPENSATION"));
+  if (static_cast<uint64_t>(n - num_removed) + added.size() > max) {
+    return LimitError("COMPENSATION: dynamic set would exceed " + std::to_string(max));
+  }
+  GaussianSet* set = MutableDynamicSet();
+  if (num_removed > 0) {
+    const int32_t* flags = removed.data();
+    CompactRows(&set->positions, 3, flags, n);
+    CompactRows(&set->log_scales, 3, flags, n);
+    CompactRows(&set->rotations, 4, flags, n);
+    CompactRows(&set->opacity_logits, 1, flags, n);
+    CompactRows(&set->sh, static_cast<size_t>(set->sh_floats()), flags, n);
+  }
+  AppendSet(added, set);
+  return Status::Ok();
+}
+
+void Decoder::EmitFrame(uint32_t frame_index, bool is_keyframe) {
+  frame_ = DecodedFrame();
+  frame_.frame_index = frame_index;
+  frame_.is_keyframe = is_keyframe;
+  frame_index_ = frame_index;
+  auto empty = std::make_shared<const GaussianSet>();
+  if (wants(M4D_LAYER_STATIC)) {
+    frame_.layers |= M4D_LAYER_STATIC;
+    frame_.static_layer = background_ ? background_ : static_;
+  } else {
+    frame_.static_layer = empty;
+  }
+  if (wants(M4D_LAYER_DYNAMIC)) {
+    frame_.layers |= M4D_LAYER_DYNAMIC;
+    frame_.dynamic_layer = dynamic_;
+  } else {
+    frame_.dynamic_layer = empty;
+  }
+  has_frame_ = true;
+}
+
+}  // namespace m4d

@@ -1,0 +1,95 @@
+// Decoder: the decoding process of bitstream-spec section 6 as a packet-driven state machine.
+// The C API (api/m4d_api.cc) wraps it; the encoder drives one directly to reconstruct exactly
+// what every decoder will output (closed loop).
+#ifndef M4D_DECODE_DECODER_H_
+#define M4D_DECODE_DECODER_H_
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "bitstream/packet_header.h"
+#include "bitstream/sequence_header.h"
+#include "common/status.h"
+#include "layers/gaussian_set.h"
+#include "layers/mlp_weights.h"
+#include "layers/motion_grid.h"
+
+namespace m4d {
+
+struct DecoderOptions {
+  uint32_t layers = M4D_LAYER_ALL;
+  uint32_t max_gaussians = 0;    // 0: the spec's limit
+  uint32_t max_grid_values = 0;  // 0: the spec's limit
+  bool verify_checksums = true;
+  const M4dAllocator* allocator = nullptr;  // must outlive the decoder
+  std::function<void(int level, const std::string& message)> log;
+};
+
+// One output frame. The sets are immutable and shared between frames (the static layer by
+// every frame of a GOP); an absent layer is an empty set.
+struct DecodedFrame {
+  uint32_t frame_index = 0;
+  bool is_keyframe = false;
+  uint32_t layers = 0;
+  std::shared_ptr<const GaussianSet> static_layer;
+  std::shared_ptr<const GaussianSet> dynamic_layer;
+};
+
+class Decoder {
+ public:
+  explicit Decoder(const DecoderOptions& options);
+
+  // Decodes one whole packet (header + payload, `size` bytes exactly). The caller must have
+  // taken the previous frame first (HasFrame() false). On error the decoder drops its state
+  // and skips packets until the next SEQUENCE_HEADER.
+  Status SendPacket(const uint8_t* data, size_t size);
+
+  bool HasFrame() const { return has_frame_; }
+  DecodedFrame TakeFrame();
+
+  // Drops all state and any pending frame; keeps the options and the caller background.
+  void Flush();
+
+  // Replaces the static layer of every following frame (nullptr restores the stream's).
+  void SetBackground(std::shared_ptr<const GaussianSet> background);
+
+  // The dynamic set after the last decoded packet: after a MOTION_GRID, the moved set the
+  // following COMPENSATION edits (the encoder decides its compensation from it).
+  const GaussianSet* dynamic_set() const { return dynamic_.get(); }
+  const SequenceHeader& sequence_header() const { return sequence_; }
+
+ private:
+  enum class Stage { kNeedSequenceHeader, kKeyframeStart, kKeyframeStatic, kKeyframeDynamic,
+                     kInter, kMotion };
+
+  Status Dispatch(const PacketHeader& header, const uint8_t* payload);
+  Status CheckOrder(const PacketHeader& header);
+  Status DecodeSequenceHeader(const PacketHeader& header, const uint8_t* payload);
+  Status DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_static);
+  Status DecodeMlp(const uint8_t* payload, size_t size);
+  Status DecodeMotion(const uint8_t* payload, size_t size);
+  Status DecodeCompensation(const uint8_t* payload, size_t size);
+  void EmitFrame(uint32_t frame_index, bool is_keyframe);
+  void Reset();
+  GaussianSet* MutableDynamicSet();
+  uint32_t MaxGaussians() const;
+  bool wants(uint32_t layer) const { return (options_.layers & layer) != 0; }
+
+  DecoderOptions options_;
+  Stage stage_ = Stage::kNeedSequenceHeader;
+  uint32_t frame_index_ = 0;  // frame being decoded
+  SequenceHeader sequence_;
+  std::shared_ptr<const GaussianSet> static_;
+  std::shared_ptr<GaussianSet> dynamic_;  // shared with output frames; copied on write
+  std::shared_ptr<const GaussianSet> background_;
+  MlpWeights mlp_;
+  MotionGrid grid_;
+  bool has_frame_ = false;
+  DecodedFrame frame_;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_DECODE_DECODER_H_

@@ -1,0 +1,25 @@
+// The normative frame hash (bitstream-spec section 7): MD5 over the output layers.
+#ifndef M4D_DECODE_FRAME_HASH_H_
+#define M4D_DECODE_FRAME_HASH_H_
+
+#include <cstdint>
+#include <string>
+
+#include "decode/decoder.h"
+#include "layers/gaussian_set.h"
+#include "m4d/m4d.h"
+
+namespace m4d {
+
+// A public-API view of a set (arrays NULL when empty); valid while the set lives.
+M4dGaussians GaussianView(const GaussianSet& set);
+
+void FrameHash(const M4dGaussians& static_layer, const M4dGaussians& dynamic_layer,
+               uint8_t md5[16]);
+
+// Lowercase hex digest of a decoded frame, as conformance files list it.
+std::string FrameHashHex(const DecodedFrame& frame);
+
+}  // namespace m4d
+
+#endif  // M4D_DECODE_FRAME_HASH_H_

@@ -1,0 +1,421 @@
+// Decoding of gaussian_set() (bitstream-spec 5.4, 5.5).
+//
+// Draco 1.5 trusts its input: a hostile stream can make it allocate from any count it
+// declares (points, components, symbol tables). So the Draco stream's structure is walked
+// first (CheckDracoStream) and only a stream whose every such count is bounded by the set's
+// count and groups reaches draco::Decoder.
+#include "layers/gaussian_set_reader.h"
+
+#include <draco/compression/config/compression_shared.h>
+#include <draco/compression/decode.h>
+#include <draco/compression/entropy/symbol_decoding.h>
+#include <draco/core/decoder_buffer.h>
+#include <draco/point_cloud/point_cloud.h>
+
+#include <cstring>
+#include <memory>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "common/spec_limits.h"
+
+namespace m4d {
+namespace {
+
+constexpr int kMaxGroupComponents = 45;  // sh_rest at SH degree 3
+
+// Draco stream profile of spec 5.5.
+constexpr uint8_t kDracoVersionMajor = 2;
+constexpr uint8_t kDracoVersionMinor = 3;
+constexpr size_t kDracoHeaderSize = 11;  // "DRACO", version, encoder type, method, flags
+constexpr uint8_t kDracoMaxKdTreeLevel = 6;
+// Draco's raw symbol scheme codes symbols below 2^18; its tagged scheme codes bit lengths
+// 1..32. Larger tables are never written, and Draco would allocate them unchecked.
+constexpr uint32_t kDracoMaxRawSymbols = 1u << 18;
+constexpr uint32_t kDracoMaxTagSymbols = 32;
+constexpr uint8_t kDracoMaxRawBitLength = 18;
+
+// One attribute group's quantization (spec 5.4), (min, step) expanded to every component.
+struct GroupCoding {
+  int group = 0;
+  int components = 0;
+  int bits = 0;
+  float min[kMaxGroupComponents];
+  float step[kMaxGroupComponents];
+};
+
+draco::DataType DracoDataType(int bits) {
+  return bits <= 8 ? draco::DT_UINT8 : bits <= 16 ? draco::DT_UINT16 : draco::DT_UINT32;
+}
+
+draco::GeometryAttribute::Type DracoAttributeType(int group) {
+  return group == kGroupPosition ? draco::GeometryAttribute::POSITION
+                                 : draco::GeometryAttribute::GENERIC;
+}
+
+Status DracoError(const std::string& what) { return BitstreamError("Draco payload: " + what); }
+Status DracoTruncated() { return DracoError("truncated"); }
+
+// Skips the frequency table of a Draco rANS symbol coder with `num_symbols` entries.
+Status SkipDracoFrequencyTable(ByteReader* r, uint32_t num_symbols) {
+  for (uint32_t i = 0; i < num_symbols; ++i) {
+    uint8_t token;
+    if (!r->ReadU8(&token)) return DracoTruncated();
+    if ((token & 3) == 3) {
+      const uint32_t extra_zeros = token >> 2;
+      if (extra_zeros >= num_symbols - i) return DracoError("frequency run past the table");
+      i += extra_zeros;
+    } else {
+      const uint8_t* skipped;
+      if (!r->ReadBytes(token & 3, &skipped)) return DracoTruncated();
+    }
+  }
+  return Status::Ok();
+}
+
+// Skips one array coded by Draco's DecodeSymbols (`num_values` values in entries of
+// `components`) at r's position in `payload` (of `size` bytes), after bounding its tables.
+Status SkipDracoSymbols(const uint8_t* payload, size_t size, ByteReader* r, uint32_t num_values,
+                        int components, std::vector<uint32_t>* scratch) {
+  const size_t start = r->position();
+  uint8_t scheme;
+  if (!r->ReadU8(&scheme)) return DracoTruncated();
+  if (scheme == draco::SYMBOL_CODING_RAW) {
+    uint8_t bit_length;
+    uint32_t num_symbols, num_bytes;
+    if (!r->ReadU8(&bit_length) || !r->ReadVarUint(&num_symbols)) return DracoTruncated();
+    if (bit_length < 1 || bit_length > kDracoMaxRawBitLength) {
+      return DracoError("bad symbol bit length");
+    }
+    if (num_symbols < 1 || num_symbols > kDracoMaxRawSymbols) {
+      return DracoError("symbol table too large");
+    }
+    M4D_RETURN_IF_ERROR(SkipDracoFrequencyTable(r, num_symbols));
+    const uint8_t* skipped;
+    if (!r->ReadVarUint(&num_bytes) || !r->ReadBytes(num_bytes, &skipped)) {
+      return DracoTruncated();
+    }
+    return Status::Ok();
+  }
+  if (scheme != draco::SYMBOL_CODING_TAGGED) return DracoError("unknown symbol coding");
+  uint32_t num_tags;
+  if (!r->ReadVarUint(&num_tags)) return DracoTruncated();
+  if (num_tags < 1 || num_tags > kDracoMaxTagSymbols) return DracoError("tag table too large");
+  // The tagged values' length is known only once the tags are decoded: let Draco decode the
+  // array, whose tables are now bounded.
+  draco::DecoderBuffer buffer;
+  buffer.Init(reinterpret_cast<const char*>(payload + start), size - start,
+              DRACO_BITSTREAM_VERSION(kDracoVersionMajor, kDracoVersionMinor));
+  scratch->resize(num_values);
+  if (!draco::DecodeSymbols(num_values, components, &buffer, scratch->data())) {
+    return DracoError("bad tagged symbols");
+  }
+  const size_t consumed = static_cast<size_t>(buffer.decoded_size());
+  const size_t read = r->position() - start;
+  const uint8_t* skipped;
+  if (consumed < read || !r->ReadBytes(consumed - read, &skipped)) return DracoTruncated();
+  return Status::Ok();
+}
+
+// Walks the Draco stream up to where the cost of decoding is bounded by `count` and the coded
+// groups (spec 5.5): header, point count, attribute descriptors and, for the sequential
+// method, every attribute's prediction, symbol tables and wrap bounds (to the exact end).
+Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
+                        const GroupCoding* const* coded, int num_coded) {
+  ByteReader r(payload, size);
+  const uint8_t* header;
+  if (!r.ReadBytes(kDracoHeaderSize, &header)) return DracoTruncated();
+  if (std::memcmp(header, "DRACO", 5) != 0) return DracoError("no DRACO magic");
+  if (header[5] != kDracoVersionMajor || header[6] != kDracoVersionMinor) {
+    return DracoError("version " + std::to_string(header[5]) + "." + std::to_string(header[6]) +
+                      " is not 2.3");
+  }
+  if (header[7] != draco::POINT_CLOUD) return DracoError("not a point cloud");
+  const uint8_t method = header[8];
+  if (method != draco::POINT_CLOUD_SEQUENTIAL_ENCODING &&
+      method != draco::POINT_CLOUD_KD_TREE_ENCODING) {
+    return DracoError("unknown encoding method " + std::to_string(method));
+  }
+  if (header[9] != 0 || header[10] != 0) return DracoError("flags (metadata) set");
+
+  uint32_t num_points;
+  uint8_t num_decoders;
+  if (!r.ReadU32(&num_points) || !r.ReadU8(&num_decoders)) return DracoTruncated();
+  if (num_points != count) {
+    return DracoError("declares " + std::to_string(num_points) + " points, the set " +
+                      std::to_string(count));
+  }
+  if (num_decoders != (num_coded > 0 ? 1 : 0)) return DracoError("wrong attribute decoder count");
+  if (num_coded == 0) return r.remaining() == 0 ? Status::Ok() : DracoError("trailing bytes");
+
+  // Descriptors: one attribute per coded group, in group order, each in a single byte where
+  // Draco writes a varint (all values here are below 128).
+  uint8_t num_attributes;
+  if (!r.ReadU8(&num_attributes)) return DracoTruncated();
+  if (num_attributes != num_coded) return DracoError("wrong attribute count");
+  int max_bits = 0;
+  for (int j = 0; j < num_coded; ++j) {
+    const uint8_t* d;
+    if (!r.ReadBytes(5, &d)) return DracoTruncated();
+    const GroupCoding& g = *coded[j];
+    if (d[0] != DracoAttributeType(g.group) || d[1] != DracoDataType(g.bits) ||
+        d[2] != g.components || d[3] != 0 || d[4] != j) {
+      return DracoError("attribute " + std::to_string(j) + " does not match group " +
+                        std::to_string(g.group));
+    }
+    if (g.bits > max_bits) max_bits = g.bits;
+  }
+
+  if (method == draco::POINT_CLOUD_KD_TREE_ENCODING) {
+    // Then the kd-tree coder's own header; its other buffers are bounded by the payload.
+    uint8_t level;
+    uint32_t bit_length, kd_points;
+    if (!r.ReadU8(&level) || !r.ReadU32(&bit_length) || !r.ReadU32(&kd_points)) {
+      return DracoTruncated();
+    }
+    if (level > kDracoMaxKdTreeLevel) return DracoError("bad kd-tree compression level");
+    if (bit_length > static_cast<uint32_t>(max_bits)) return DracoError("kd-tree values too wide");
+    if (kd_points != count) return DracoError("kd-tree point count differs");
+    return Status::Ok();
+  }
+
+  for (int j = 0; j < num_coded; ++j) {
+    uint8_t decoder_type;
+    if (!r.ReadU8(&decoder_type)) return DracoTruncated();
+    if (decoder_type != draco::SEQUENTIAL_ATTRIBUTE_ENCODER_INTEGER) {
+      return DracoError("attribute not integer-coded");
+    }
+  }
+  std::vector<uint32_t> scratch;
+  for (int j = 0; j < num_coded; ++j) {
+    const GroupCoding& g = *coded[j];
+    uint8_t prediction, compressed;
+    if (!r.ReadU8(&prediction)) return DracoTruncated();
+    const bool delta = prediction == draco::PREDICTION_DIFFERENCE;
+    if (!delta && static_cast<int8_t>(prediction) != draco::PREDICTION_NONE) {
+      return DracoError("unsupported prediction scheme");
+    }
+    if (delta) {
+      uint8_t transform;
+      if (!r.ReadU8(&transform)) return DracoTruncated();
+      if (transform != draco::PREDICTION_TRANSFORM_WRAP) {
+        return DracoError("bad prediction transform");
+      }
+    }
+    if (!r.ReadU8(&compressed)) return DracoTruncated();
+    if (compressed != 1) return DracoError("uncompressed attribute");
+    M4D_RETURN_IF_ERROR(SkipDracoSymbols(
+        payload, size, &r, count * static_cast<uint32_t>(g.components), g.components, &scratch));
+    if (delta) {
+      uint32_t lo, hi;
+      if (!r.ReadU32(&lo) || !r.ReadU32(&hi)) return DracoTruncated();
+      if (lo > hi || hi >= (1u << g.bits)) return DracoError("bad wrap bounds");
+    }
+  }
+  return r.remaining() == 0 ? Status::Ok() : DracoError("trailing bytes");
+}
+
+template <typename T>
+bool Dequantize(const uint8_t* src, uint32_t count, const GroupCoding& g, float* dst,
+                size_t dst_stride) {
+  const int c = g.components;
+  const uint32_t limit = 1u << g.bits;
+  for (uint32_t i = 0; i < count; ++i, src += c * sizeof(T), dst += dst_stride) {
+    for (int r = 0; r < c; ++r) {
+      T q;
+      std::memcpy(&q, src + r * sizeof(T), sizeof(T));
+      if (static_cast<uint32_t>(q) >= limit) return false;
+      dst[r] = g.min[r] + static_cast<float>(q) * g.step[r];
+    }
+  }
+  return true;
+}
+
+// Where a group's components go in the set: base pointer and stride per Gaussian.
+float* GroupDestination(GaussianSet* set, int group, size_t* stride) {
+  const size_t sh_stride = static_cast<size_t>(set->sh_floats());
+  switch (group) {
+    case kGroupPosition:
+      *stride = 3;
+      return set->positions.data();
+    case kGroupLogScale:
+      *stride = 3;
+      return set->log_scales.data();
+    case kGroupRotation:
+      *stride = 4;
+      return set->rotations.data();
+    case kGroupOpacity:
+      *stride = 1;
+      return set->opacity_logits.data();
+    case kGroupShDc:
+      *stride = sh_stride;
+      return set->sh.data();
+    default:
+      *stride = sh_stride;
+      return set->sh.data() + 3;
+  }
+}
+
+// Checks that Draco returned the attributes CheckDracoStream saw, as dense arrays of `count`.
+const uint8_t* AttributeValues(const draco::PointCloud& pc, int j, const GroupCoding& g,
+                               uint32_t count) {
+  const draco::PointAttribute* att = pc.attribute(j);
+  if (att == nullptr || att->attribute_type() != DracoAttributeType(g.group) ||
+      att->data_type() != DracoDataType(g.bits) || att->num_components() != g.components ||
+      !att->is_mapping_identity() || att->size() != count || att->byte_offset() != 0) {
+    return nullptr;
+  }
+  const size_t stride = static_cast<size_t>(draco::DataTypeLength(att->data_type())) *
+                        static_cast<size_t>(g.components);
+  if (static_cast<size_t>(att->byte_stride()) != stride ||
+      att->buffer()->data_size() < stride * count) {
+    return nullptr;
+  }
+  return att->buffer()->data();
+}
+
+Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const GroupCoding* groups,
+                    int num_groups, int sh_degree, GaussianSet* out) {
+  const GroupCoding* coded[kNumGaussianGroups];
+  int num_coded = 0;
+  for (int k = 0; k < num_groups; ++k) {
+    if (groups[k].bits > 0) coded[num_coded++] = &groups[k];
+  }
+
+  std::unique_ptr<draco::PointCloud> pc;
+  try {
+    M4D_RETURN_IF_ERROR(CheckDracoStream(payload, size, count, coded, num_coded));
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(payload), size);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodePointCloudFromBuffer(&buffer);
+    if (!decoded.ok()) return DracoError(decoded.status().error_msg_string());
+    if (buffer.remaining_size() != 0) return DracoError("trailing bytes");
+    pc = std::move(decoded).value();
+  } catch (const std::bad_alloc&) {
+    return Status(M4D_ERR_NOMEM, "out of memory in the Draco decoder");
+  } catch (...) {
+    return DracoError("the Draco decoder failed");
+  }
+  if (pc == nullptr || pc->num_points() != count || pc->num_attributes() != num_coded) {
+    return DracoError("decoded point cloud does not match the set");
+  }
+  const uint8_t* values[kNumGaussianGroups];
+  for (int j = 0; j < num_coded; ++j) {
+    values[j] = AttributeValues(*pc, j, *coded[j], count);
+    if (values[j] == nullptr) {
+      return DracoError("decoded attribute " + std::to_string(j) + " is malformed");
+    }
+  }
+
+  out->sh_degree = sh_degree;
+  out->Resize(count);
+  int j = 0;
+  for (int k = 0; k < num_groups; ++k) {
+    const GroupCoding& g = groups[k];
+    size_t stride;
+    float* dst = GroupDestination(out, g.group, &stride);
+    if (g.bits == 0) {
+      // q = 0: the spec formula still applies (min = -0 gives +0).
+      float value[kMaxGroupComponents];
+      for (int r = 0; r < g.components; ++r) value[r] = g.min[r] + 0.0f * g.step[r];
+      for (uint32_t i = 0; i < count; ++i, dst += stride) {
+        std::memcpy(dst, value, sizeof(float) * static_cast<size_t>(g.components));
+      }
+      continue;
+    }
+    bool ok;
+    switch (DracoDataType(g.bits)) {
+      case draco::DT_UINT8:
+        ok = Dequantize<uint8_t>(values[j], count, g, dst, stride);
+        break;
+      case draco::DT_UINT16:
+        ok = Dequantize<uint16_t>(values[j], count, g, dst, stride);
+        break;
+      default:
+        ok = Dequantize<uint32_t>(values[j], count, g, dst, stride);
+        break;
+    }
+    if (!ok) {
+      return BitstreamError("group " + std::to_string(g.group) + ": value not below 2^" +
+                            std::to_string(g.bits));
+    }
+    ++j;
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+int GaussianGroupComponents(int group, int sh_degree) {
+  switch (group) {
+    case kGroupPosition:
+    case kGroupLogScale:
+    case kGroupShDc:
+      return 3;
+    case kGroupRotation:
+      return 4;
+    case kGroupOpacity:
+      return 1;
+    case kGroupShRest:
+      return 3 * (ShCoefficients(sh_degree) - 1);
+    default:
+      return 0;
+  }
+}
+
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, GaussianSet* out) {
+  if (sh_degree < 0 || sh_degree > 3) return Status(M4D_ERR_INVALID_ARG, "bad SH degree");
+  uint32_t count;
+  if (!reader->ReadVarUint(&count)) return BitstreamError("gaussian_set: bad count");
+  if (count > max_count || count > kMaxGaussiansPerSet) {
+    return LimitError(
+        "gaussian_set: " + std::to_string(count) + " Gaussians exceed the limit " +
+        std::to_string(max_count < kMaxGaussiansPerSet ? max_count : kMaxGaussiansPerSet));
+  }
+  if (count == 0) {
+    out->sh_degree = sh_degree;
+    out->Resize(0);
+    return Status::Ok();
+  }
+
+  GroupCoding groups[kNumGaussianGroups];
+  int num_groups = 0;
+  for (int group = 0; group < kNumGaussianGroups; ++group) {
+    const int components = GaussianGroupComponents(group, sh_degree);
+    if (components == 0) continue;
+    GroupCoding& g = groups[num_groups++];
+    g.group = group;
+    g.components = components;
+    const std::string where = "gaussian_set group " + std::to_string(group) + ": ";
+    uint8_t bits, per_component;
+    if (!reader->ReadU8(&bits) || !reader->ReadU8(&per_component)) {
+      return BitstreamError(where + "truncated");
+    }
+    if (bits > kMaxAttributeBits) return BitstreamError(where + "bits above 24");
+    if (per_component > 1) return BitstreamError(where + "per_component not 0 or 1");
+    g.bits = bits;
+    const int pairs = per_component ? components : 1;
+    for (int p = 0; p < pairs; ++p) {
+      if (!reader->ReadFiniteF32(&g.min[p]) || !reader->ReadFiniteF32(&g.step[p])) {
+        return BitstreamError(where + "truncated or non-finite min/step");
+      }
+      if (!(g.step[p] >= 0.0f)) return BitstreamError(where + "negative step");
+    }
+    for (int r = pairs; r < components; ++r) {
+      g.min[r] = g.min[0];
+      g.step[r] = g.step[0];
+    }
+  }
+
+  uint32_t draco_size;
+  const uint8_t* draco_payload;
+  if (!reader->ReadVarUint(&draco_size) || draco_size == 0 ||
+      !reader->ReadBytes(draco_size, &draco_payload)) {
+    return BitstreamError("gaussian_set: draco_size outside 1..remaining");
+  }
+  return DecodeGroups(draco_payload, draco_size, count, groups, num_groups, sh_degree, out);
+}
+
+}  // namespace m4d
