@@ -24,6 +24,7 @@ struct Options {
   int static_count = 20000;
   int dynamic_count = 5000;
   int sh_degree = 3;
+  float motion_fraction = 0.05f;
   uint64_t seed = 1;
 };
 
@@ -51,7 +52,7 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
         status = writer.WriteKeyframe(bg, fg, mlp, &recon);
       } else {
         status = writer.WriteMotion(
-            SyntheticMotionGrid(wo.sequence.grid, seed * 31 + f, -1.0f, 1.0f, 0.05f));
+            SyntheticMotionGrid(wo.sequence.grid, seed * 31 + f, -1.0f, 1.0f, opt.motion_fraction));
         if (status.ok()) {
           // Replace about 1% of the dynamic Gaussians each frame.
           const size_t n = writer.moved_dynamic_set().size();
@@ -121,6 +122,9 @@ int main(int argc, char** argv) {
   app.add_option("--dynamic", opt.dynamic_count, "dynamic Gaussians per keyframe")
       ->check(CLI::Range(0, 1 << 21));
   app.add_option("--sh-degree", opt.sh_degree, "SH degree")->check(CLI::Range(0, 3));
+  app.add_option("--motion-fraction", opt.motion_fraction,
+                 "fraction of the motion grid's box covered by motion")
+      ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--seed", opt.seed, "random seed");
   CLI11_PARSE(app, argc, argv);
 

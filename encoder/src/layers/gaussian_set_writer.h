@@ -18,7 +18,7 @@ struct GaussianQuantization {
   int opacity_bits = 8;
   int sh_dc_bits = 8;
   int sh_rest_bits = 5;
-  // Draco encoder speed 0 (best) .. 10 (fastest); kd-tree below 10.
+  // Draco encoder speed 0 (best) .. 10 (fastest); always the sequential method (spec 5.5).
   int draco_speed = 5;
 };
 

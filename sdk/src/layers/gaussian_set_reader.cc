@@ -29,7 +29,6 @@ constexpr int kMaxGroupComponents = 45;  // sh_rest at SH degree 3
 constexpr uint8_t kDracoVersionMajor = 2;
 constexpr uint8_t kDracoVersionMinor = 3;
 constexpr size_t kDracoHeaderSize = 11;  // "DRACO", version, encoder type, method, flags
-constexpr uint8_t kDracoMaxKdTreeLevel = 6;
 // Draco's raw symbol scheme codes symbols below 2^18; its tagged scheme codes bit lengths
 // 1..32. Larger tables are never written, and Draco would allocate them unchecked.
 constexpr uint32_t kDracoMaxRawSymbols = 1u << 18;
@@ -119,8 +118,8 @@ Status SkipDracoSymbols(const uint8_t* payload, size_t size, ByteReader* r, uint
 }
 
 // Walks the Draco stream up to where the cost of decoding is bounded by `count` and the coded
-// groups (spec 5.5): header, point count, attribute descriptors and, for the sequential
-// method, every attribute's prediction, symbol tables and wrap bounds (to the exact end).
+// groups (spec 5.5): header, point count, attribute descriptors and every attribute's
+// prediction, symbol tables and wrap bounds (to the exact end).
 Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
                         const GroupCoding* const* coded, int num_coded) {
   ByteReader r(payload, size);
@@ -132,10 +131,9 @@ Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
                       " is not 2.3");
   }
   if (header[7] != draco::POINT_CLOUD) return DracoError("not a point cloud");
-  const uint8_t method = header[8];
-  if (method != draco::POINT_CLOUD_SEQUENTIAL_ENCODING &&
-      method != draco::POINT_CLOUD_KD_TREE_ENCODING) {
-    return DracoError("unknown encoding method " + std::to_string(method));
+  // Sequential only: its decoded order is the coded order, and its tables can be bounded.
+  if (header[8] != draco::POINT_CLOUD_SEQUENTIAL_ENCODING) {
+    return DracoError("encoding method " + std::to_string(header[8]) + " is not sequential");
   }
   if (header[9] != 0 || header[10] != 0) return DracoError("flags (metadata) set");
 
@@ -154,7 +152,6 @@ Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
   uint8_t num_attributes;
   if (!r.ReadU8(&num_attributes)) return DracoTruncated();
   if (num_attributes != num_coded) return DracoError("wrong attribute count");
-  int max_bits = 0;
   for (int j = 0; j < num_coded; ++j) {
     const uint8_t* d;
     if (!r.ReadBytes(5, &d)) return DracoTruncated();
@@ -164,20 +161,6 @@ Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
       return DracoError("attribute " + std::to_string(j) + " does not match group " +
                         std::to_string(g.group));
     }
-    if (g.bits > max_bits) max_bits = g.bits;
-  }
-
-  if (method == draco::POINT_CLOUD_KD_TREE_ENCODING) {
-    // Then the kd-tree coder's own header; its other buffers are bounded by the payload.
-    uint8_t level;
-    uint32_t bit_length, kd_points;
-    if (!r.ReadU8(&level) || !r.ReadU32(&bit_length) || !r.ReadU32(&kd_points)) {
-      return DracoTruncated();
-    }
-    if (level > kDracoMaxKdTreeLevel) return DracoError("bad kd-tree compression level");
-    if (bit_length > static_cast<uint32_t>(max_bits)) return DracoError("kd-tree values too wide");
-    if (kd_points != count) return DracoError("kd-tree point count differs");
-    return Status::Ok();
   }
 
   for (int j = 0; j < num_coded; ++j) {
