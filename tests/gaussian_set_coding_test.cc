@@ -365,7 +365,6 @@ std::vector<uint8_t> DracoEncode(const draco::PointCloud& pc, int method, int pr
   return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
 
-
 TEST(GaussianSetCodingTest, RejectsKdTreePayloads) {
   // Spec 5.5 allows Draco's sequential method only; a valid kd-tree stream of the same
   // points is refused before Draco decodes it.

@@ -66,23 +66,19 @@ class MalformedStream : public ::testing::Test {
 TestStream* MalformedStream::stream_ = nullptr;
 
 TEST_F(MalformedStream, PacketHeaderFields) {
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[0] = 'X'; })),
-            M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[8] ^= 1; }, false)),
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[0] = 'X'; })), M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(0, Edited(
+                                       0, [](Packet* p) { (*p)[8] ^= 1; }, false)),
             M4D_ERR_CHECKSUM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[5] |= 2; })),
-            M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[7] = 1; })),
-            M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 7; })),
-            M4D_ERR_UNSUPPORTED);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 0; })),
-            M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[5] |= 2; })), M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[7] = 1; })), M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 7; })), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 0; })), M4D_ERR_UNSUPPORTED);
   // payload_size above 2^26.
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[15] = 0x10; })),
-            M4D_ERR_LIMIT);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[15] = 0x10; })), M4D_ERR_LIMIT);
   // Payload CRC mismatch.
-  EXPECT_EQ(SendWithReplacement(1, Edited(1, [](Packet* p) { (*p)[30] ^= 0x40; }, false)),
+  EXPECT_EQ(SendWithReplacement(1, Edited(
+                                       1, [](Packet* p) { (*p)[30] ^= 0x40; }, false)),
             M4D_ERR_CHECKSUM);
 }
 
@@ -127,16 +123,12 @@ TEST_F(MalformedStream, PacketOrder) {
   // COMPENSATION without its MOTION_GRID.
   EXPECT_EQ(SendWithReplacement(4, stream_->packets[5]), M4D_ERR_BITSTREAM);
   // A frame index that skips a frame.
-  EXPECT_EQ(SendWithReplacement(4, Edited(4, [](Packet* p) { (*p)[8] += 1; })),
-            M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(4, Edited(4, [](Packet* p) { (*p)[8] += 1; })), M4D_ERR_BITSTREAM);
   // end_of_frame on a packet that does not end a frame, and missing where it must be.
-  EXPECT_EQ(SendWithReplacement(4, Edited(4, [](Packet* p) { (*p)[5] = 1; })),
-            M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(3, Edited(3, [](Packet* p) { (*p)[5] = 0; })),
-            M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(4, Edited(4, [](Packet* p) { (*p)[5] = 1; })), M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(3, Edited(3, [](Packet* p) { (*p)[5] = 0; })), M4D_ERR_BITSTREAM);
   // A KEYFRAME_DYNAMIC with another frame index than its SEQUENCE_HEADER.
-  EXPECT_EQ(SendWithReplacement(2, Edited(2, [](Packet* p) { (*p)[8] = 9; })),
-            M4D_ERR_BITSTREAM);
+  EXPECT_EQ(SendWithReplacement(2, Edited(2, [](Packet* p) { (*p)[8] = 9; })), M4D_ERR_BITSTREAM);
 }
 
 TEST_F(MalformedStream, SequenceHeaderFields) {
@@ -150,8 +142,8 @@ TEST_F(MalformedStream, SequenceHeaderFields) {
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(2, 1))), M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(3, 4))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {
-              for (int i = 4; i < 8; ++i) (*p)[i] = 0;
-            })),
+                                  for (int i = 4; i < 8; ++i) (*p)[i] = 0;
+                                })),
             M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(16, 0))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(16, 5))), M4D_ERR_BITSTREAM);
@@ -160,31 +152,32 @@ TEST_F(MalformedStream, SequenceHeaderFields) {
   // Resolution of level 0 (offset 20): 1 and 257.
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(20, 1))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {
-              (*p)[20] = 1;
-              (*p)[21] = 1;
-            })),
+                                  (*p)[20] = 1;
+                                  (*p)[21] = 1;
+                                })),
             M4D_ERR_BITSTREAM);
   // Level 2 at 256^3 x 2 channels = 2^25 values: above the grid limit.
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {
-              (*p)[24] = 0;
-              (*p)[25] = 1;
-            })),
+                                  (*p)[24] = 0;
+                                  (*p)[25] = 1;
+                                })),
             M4D_ERR_LIMIT);
   // MLP hidden layers (offset 26) 0 and 5, width (27..28) 0 and 257.
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(26, 0))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(26, 5))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {
-              (*p)[27] = 0;
-              (*p)[28] = 0;
-            })),
+                                  (*p)[27] = 0;
+                                  (*p)[28] = 0;
+                                })),
             M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {
-              (*p)[27] = 1;
-              (*p)[28] = 1;
-            })),
+                                  (*p)[27] = 1;
+                                  (*p)[28] = 1;
+                                })),
             M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) { p->push_back(0); })),
-            M4D_ERR_BITSTREAM);
+  EXPECT_EQ(
+      SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) { p->push_back(0); })),
+      M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) { p->resize(20); })),
             M4D_ERR_BITSTREAM);
 }

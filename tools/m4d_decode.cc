@@ -108,8 +108,8 @@ int main(int argc, char** argv) {
         drain();
         r = m4d_send_packet(ctx, &data[pos], info.packet_size);
       }
-      decode_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                       .count();
+      decode_ms +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (r < 0) ++errors;
       drain();
     }

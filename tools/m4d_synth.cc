@@ -42,8 +42,8 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
   for (int g = 0; g < opt.gops; ++g) {
     const uint64_t seed = opt.seed * 1000 + g;
     GaussianSet bg = SyntheticGaussianSet(opt.static_count, opt.sh_degree, seed, center, 3.0f);
-    GaussianSet fg = SyntheticGaussianSet(opt.dynamic_count, opt.sh_degree, seed + 7, fg_center,
-                                          0.5f);
+    GaussianSet fg =
+        SyntheticGaussianSet(opt.dynamic_count, opt.sh_degree, seed + 7, fg_center, 0.5f);
     MlpWeights mlp = SyntheticMlp(wo.sequence.grid.feature_count(), wo.sequence.mlp, seed);
     DecodedFrame recon;
     for (int f = 0; f < opt.frames_per_gop; ++f) {
@@ -58,8 +58,8 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
           const size_t n = writer.moved_dynamic_set().size();
           std::vector<uint8_t> removed(n, 0);
           for (size_t i = f; i < n; i += 100) removed[i] = 1;
-          GaussianSet added = SyntheticGaussianSet(n / 100, opt.sh_degree, seed * 77 + f,
-                                                   fg_center, 0.5f);
+          GaussianSet added =
+              SyntheticGaussianSet(n / 100, opt.sh_degree, seed * 77 + f, fg_center, 0.5f);
           status = writer.WriteCompensation(removed, added, &recon);
         }
       }
@@ -135,7 +135,8 @@ int main(int argc, char** argv) {
   const double write_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::ofstream(opt.output, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
 
   double decode_ms = 0;
   const int matches = CountMatches(bytes, hashes, &decode_ms);

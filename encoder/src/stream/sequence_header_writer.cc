@@ -14,7 +14,8 @@ Status WriteSequenceHeader(const SequenceHeader& h, ByteWriter* out) {
   out->WriteU32(h.fps_den);
   out->WriteU32(h.num_frames);
   out->WriteU8(static_cast<uint8_t>(h.grid.num_levels));
-  for (int l = 0; l < h.grid.num_levels; ++l) out->WriteU8(static_cast<uint8_t>(h.grid.channels[l]));
+  for (int l = 0; l < h.grid.num_levels; ++l)
+    out->WriteU8(static_cast<uint8_t>(h.grid.channels[l]));
   for (int l = 0; l < h.grid.num_levels; ++l) {
     out->WriteU16(static_cast<uint16_t>(h.grid.resolution[l]));
   }

@@ -71,17 +71,13 @@ typedef enum M4dPacketType {
 } M4dPacketType;
 
 /* Log levels passed to M4dLogger.callback. */
-typedef enum M4dLogLevel {
-  M4D_LOG_ERROR = 0,
-  M4D_LOG_WARNING = 1,
-  M4D_LOG_INFO = 2
-} M4dLogLevel;
+typedef enum M4dLogLevel { M4D_LOG_ERROR = 0, M4D_LOG_WARNING = 1, M4D_LOG_INFO = 2 } M4dLogLevel;
 
 /* Logger hook. callback may be NULL (the default): nothing is logged. Messages are one line,
  * without a trailing newline, and valid only during the call. */
 typedef struct M4dLogger {
-  void *cookie;
-  void (*callback)(void *cookie, int level, const char *message);
+  void* cookie;
+  void (*callback)(void* cookie, int level, const char* message);
 } M4dLogger;
 
 /* Allocator hook for the decoder's large buffers (Gaussian arrays, motion grids, payload
@@ -89,9 +85,9 @@ typedef struct M4dLogger {
  * the call that needed the memory then returns M4D_ERR_NOMEM and the context stays usable.
  * Small bookkeeping and the Draco library's internal allocations use the C++ heap. */
 typedef struct M4dAllocator {
-  void *cookie;
-  void *(*alloc)(void *cookie, size_t size);
-  void (*free)(void *cookie, void *ptr);
+  void* cookie;
+  void* (*alloc)(void* cookie, size_t size);
+  void (*free)(void* cookie, void* ptr);
 } M4dAllocator;
 
 /* Decoder settings. Always initialise with m4d_default_settings(). */
@@ -118,57 +114,57 @@ typedef struct M4dSettings {
  * the stated width, Gaussian after Gaussian; they are NULL when count is 0. */
 typedef struct M4dGaussians {
   uint32_t count;
-  uint32_t sh_degree;           /* 0..3 */
-  uint32_t sh_coefficients;     /* (sh_degree + 1)^2 per colour channel */
-  const float *positions;       /* 3 per Gaussian: x, y, z */
-  const float *log_scales;      /* 3 per Gaussian */
-  const float *rotations;       /* 4 per Gaussian: w, x, y, z */
-  const float *opacity_logits;  /* 1 per Gaussian */
-  const float *sh;              /* 3 * sh_coefficients per Gaussian: [k][r, g, b] */
+  uint32_t sh_degree;          /* 0..3 */
+  uint32_t sh_coefficients;    /* (sh_degree + 1)^2 per colour channel */
+  const float* positions;      /* 3 per Gaussian: x, y, z */
+  const float* log_scales;     /* 3 per Gaussian */
+  const float* rotations;      /* 4 per Gaussian: w, x, y, z */
+  const float* opacity_logits; /* 1 per Gaussian */
+  const float* sh;             /* 3 * sh_coefficients per Gaussian: [k][r, g, b] */
 } M4dGaussians;
 
 /* A decoded frame: the Gaussian state of frame frame_index. */
 typedef struct M4dFrame {
   uint32_t frame_index;
-  int is_keyframe;             /* 1 at the start of a GOP (a random access point) */
-  uint32_t layers;             /* the layers this frame outputs (M4D_LAYER_* bits) */
-  M4dGaussians static_layer;   /* background; count 0 if not output */
-  M4dGaussians dynamic_layer;  /* foreground; count 0 if not output */
-  void *internal;              /* owned by the library; release with m4d_frame_unref */
+  int is_keyframe;            /* 1 at the start of a GOP (a random access point) */
+  uint32_t layers;            /* the layers this frame outputs (M4D_LAYER_* bits) */
+  M4dGaussians static_layer;  /* background; count 0 if not output */
+  M4dGaussians dynamic_layer; /* foreground; count 0 if not output */
+  void* internal;             /* owned by the library; release with m4d_frame_unref */
 } M4dFrame;
 
 /* What m4d_parse_packet_header reads from a packet header. */
 typedef struct M4dPacketInfo {
-  uint32_t type;          /* M4dPacketType */
+  uint32_t type; /* M4dPacketType */
   uint32_t frame_index;
   int end_of_frame;
   uint32_t payload_size;
-  size_t packet_size;     /* header plus payload */
+  size_t packet_size; /* header plus payload */
 } M4dPacketInfo;
 
 /* Opaque decoder context. */
 typedef struct M4dContext M4dContext;
 
 /* Returns the library version as "major.minor.patch". Never NULL. */
-M4D_API const char *m4d_version(void);
+M4D_API const char* m4d_version(void);
 
 /* Returns a static English description of an M4D_ERR_* code. Never NULL. */
-M4D_API const char *m4d_error_string(int code);
+M4D_API const char* m4d_error_string(int code);
 
 /* Fills *s with the defaults documented in M4dSettings. */
-M4D_API void m4d_default_settings(M4dSettings *s);
+M4D_API void m4d_default_settings(M4dSettings* s);
 
 /* Creates a decoder. On success *c_out is the new context and 0 is returned; on failure
  * *c_out is NULL. Fails with M4D_ERR_INVALID_ARG for NULL arguments, layers outside
  * M4D_LAYER_ALL or zero, non-zero reserved bytes, or only one of alloc/free set. */
-M4D_API int m4d_open(M4dContext **c_out, const M4dSettings *s);
+M4D_API int m4d_open(M4dContext** c_out, const M4dSettings* s);
 
 /* Reads a packet header at data (size bytes available) and checks its sync word and header
  * CRC. Use it to split a byte stream into packets: the next packet starts at
  * data + info->packet_size. Returns M4D_ERR_AGAIN when fewer than 24 bytes (or than the whole
  * packet) are available, M4D_ERR_BITSTREAM or M4D_ERR_CHECKSUM for a damaged header,
  * M4D_ERR_LIMIT for a payload size above the specification's limit. */
-M4D_API int m4d_parse_packet_header(const uint8_t *data, size_t size, M4dPacketInfo *info);
+M4D_API int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketInfo* info);
 
 /* Sends one whole packet (header and payload, exactly size bytes) to the decoder. The data is
  * not retained after the call. Returns:
@@ -178,35 +174,35 @@ M4D_API int m4d_parse_packet_header(const uint8_t *data, size_t size, M4dPacketI
  *   negative          the packet was rejected (see m4d_error_string and the logger). The
  *                     decoder then skips packets until the next SEQUENCE_HEADER, so a caller
  *                     may simply continue sending. */
-M4D_API int m4d_send_packet(M4dContext *c, const uint8_t *data, size_t size);
+M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 
 /* Takes the next decoded frame. Returns 0 and fills *out, or M4D_ERR_AGAIN when no frame is
  * ready (send more packets). The caller owns the frame until m4d_frame_unref. */
-M4D_API int m4d_get_frame(M4dContext *c, M4dFrame *out);
+M4D_API int m4d_get_frame(M4dContext* c, M4dFrame* out);
 
 /* Drops all decoding state and any pending frame, for seeking: after a flush the decoder
  * skips packets until the next SEQUENCE_HEADER (the start of a GOP). The caller background
  * (m4d_set_background) and the settings are kept. */
-M4D_API void m4d_flush(M4dContext *c);
+M4D_API void m4d_flush(M4dContext* c);
 
 /* Replaces the static layer of every frame by a copy of *background (a caller's own scene),
  * from the next frame on; KEYFRAME_STATIC packets are then skipped. NULL restores the
  * stream's own static layer. Its sh_degree may differ from the stream's. Returns
  * M4D_ERR_INVALID_ARG for a NULL context, inconsistent arrays or a count above the limit. */
-M4D_API int m4d_set_background(M4dContext *c, const M4dGaussians *background);
+M4D_API int m4d_set_background(M4dContext* c, const M4dGaussians* background);
 
 /* Returns the last error message of the context (empty when none). Valid until the next call
  * on the context. */
-M4D_API const char *m4d_last_error(const M4dContext *c);
+M4D_API const char* m4d_last_error(const M4dContext* c);
 
 /* Releases a frame from m4d_get_frame and zeroes *frame. Safe on a zeroed frame. */
-M4D_API void m4d_frame_unref(M4dFrame *frame);
+M4D_API void m4d_frame_unref(M4dFrame* frame);
 
 /* Computes the normative frame hash (bitstream-spec section 7): MD5 of the output state. */
-M4D_API int m4d_frame_hash(const M4dFrame *frame, uint8_t md5[16]);
+M4D_API int m4d_frame_hash(const M4dFrame* frame, uint8_t md5[16]);
 
 /* Closes the decoder and sets *c to NULL. Safe on NULL and on *c == NULL. */
-M4D_API void m4d_close(M4dContext **c);
+M4D_API void m4d_close(M4dContext** c);
 
 #ifdef __cplusplus
 }

@@ -51,15 +51,24 @@ const char* m4d_version(void) { return "0.1.0"; }
 
 const char* m4d_error_string(int code) {
   switch (code) {
-    case M4D_OK: return "success";
-    case M4D_ERR_AGAIN: return "try again (output pending or no frame ready)";
-    case M4D_ERR_INVALID_ARG: return "invalid argument";
-    case M4D_ERR_NOMEM: return "out of memory";
-    case M4D_ERR_BITSTREAM: return "invalid bitstream";
-    case M4D_ERR_CHECKSUM: return "checksum mismatch";
-    case M4D_ERR_UNSUPPORTED: return "unsupported bitstream feature or version";
-    case M4D_ERR_LIMIT: return "a declared size exceeds a limit";
-    default: return "unknown error";
+    case M4D_OK:
+      return "success";
+    case M4D_ERR_AGAIN:
+      return "try again (output pending or no frame ready)";
+    case M4D_ERR_INVALID_ARG:
+      return "invalid argument";
+    case M4D_ERR_NOMEM:
+      return "out of memory";
+    case M4D_ERR_BITSTREAM:
+      return "invalid bitstream";
+    case M4D_ERR_CHECKSUM:
+      return "checksum mismatch";
+    case M4D_ERR_UNSUPPORTED:
+      return "unsupported bitstream feature or version";
+    case M4D_ERR_LIMIT:
+      return "a declared size exceeds a limit";
+    default:
+      return "unknown error";
   }
 }
 
@@ -154,12 +163,12 @@ int m4d_set_background(M4dContext* c, const M4dGaussians* bg) {
     c->decoder->SetBackground(nullptr);
     return M4D_OK;
   }
-  const uint32_t max = c->settings.max_gaussians ? c->settings.max_gaussians
-                                                 : m4d::kMaxGaussiansPerSet;
+  const uint32_t max =
+      c->settings.max_gaussians ? c->settings.max_gaussians : m4d::kMaxGaussiansPerSet;
   if (bg->sh_degree > 3 || bg->count > max ||
       bg->sh_coefficients != static_cast<uint32_t>(m4d::ShCoefficients(bg->sh_degree)) ||
-      (bg->count > 0 && (!bg->positions || !bg->log_scales || !bg->rotations ||
-                         !bg->opacity_logits || !bg->sh))) {
+      (bg->count > 0 &&
+       (!bg->positions || !bg->log_scales || !bg->rotations || !bg->opacity_logits || !bg->sh))) {
     return Fail(c, M4D_ERR_INVALID_ARG, "m4d_set_background: inconsistent Gaussian arrays");
   }
   try {

@@ -60,9 +60,8 @@ Status ReadSequenceHeader(ByteReader* reader, uint32_t max_grid_values, Sequence
       profile != 0) {
     return ValidateSequenceHeader(h, max_grid_values);
   }
-  if (!reader->ReadU8(&sh_degree) || !reader->ReadU32(&h.fps_num) ||
-      !reader->ReadU32(&h.fps_den) || !reader->ReadU32(&h.num_frames) ||
-      !reader->ReadU8(&levels)) {
+  if (!reader->ReadU8(&sh_degree) || !reader->ReadU32(&h.fps_num) || !reader->ReadU32(&h.fps_den) ||
+      !reader->ReadU32(&h.num_frames) || !reader->ReadU8(&levels)) {
     return BitstreamError("sequence header: truncated");
   }
   h.sh_degree = sh_degree;

@@ -40,9 +40,13 @@ class HookedAllocator {
   const M4dAllocator* hooks() const { return hooks_; }
 
   template <typename U>
-  bool operator==(const HookedAllocator<U>& o) const { return hooks_ == o.hooks(); }
+  bool operator==(const HookedAllocator<U>& o) const {
+    return hooks_ == o.hooks();
+  }
   template <typename U>
-  bool operator!=(const HookedAllocator<U>& o) const { return hooks_ != o.hooks(); }
+  bool operator!=(const HookedAllocator<U>& o) const {
+    return hooks_ != o.hooks();
+  }
 
  private:
   const M4dAllocator* hooks_ = nullptr;

@@ -32,9 +32,9 @@ inline Status LimitError(std::string message) { return Status(M4D_ERR_LIMIT, std
 
 }  // namespace m4d
 
-#define M4D_RETURN_IF_ERROR(expr)           \
-  do {                                      \
-    ::m4d::Status m4d_status_ = (expr);     \
+#define M4D_RETURN_IF_ERROR(expr)              \
+  do {                                         \
+    ::m4d::Status m4d_status_ = (expr);        \
     if (!m4d_status_.ok()) return m4d_status_; \
   } while (0)
 

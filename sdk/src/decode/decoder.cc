@@ -15,13 +15,20 @@ namespace {
 
 const char* PacketName(uint8_t type) {
   switch (type) {
-    case M4D_PACKET_SEQUENCE_HEADER: return "SEQUENCE_HEADER";
-    case M4D_PACKET_KEYFRAME_STATIC: return "KEYFRAME_STATIC";
-    case M4D_PACKET_KEYFRAME_DYNAMIC: return "KEYFRAME_DYNAMIC";
-    case M4D_PACKET_MLP_WEIGHTS: return "MLP_WEIGHTS";
-    case M4D_PACKET_MOTION_GRID: return "MOTION_GRID";
-    case M4D_PACKET_COMPENSATION: return "COMPENSATION";
-    default: return "unknown";
+    case M4D_PACKET_SEQUENCE_HEADER:
+      return "SEQUENCE_HEADER";
+    case M4D_PACKET_KEYFRAME_STATIC:
+      return "KEYFRAME_STATIC";
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      return "KEYFRAME_DYNAMIC";
+    case M4D_PACKET_MLP_WEIGHTS:
+      return "MLP_WEIGHTS";
+    case M4D_PACKET_MOTION_GRID:
+      return "MOTION_GRID";
+    case M4D_PACKET_COMPENSATION:
+      return "COMPENSATION";
+    default:
+      return "unknown";
   }
 }
 
@@ -107,8 +114,7 @@ Status Decoder::CheckOrder(const PacketHeader& h) {
     return BitstreamError(std::string(name) + " (frame " + std::to_string(h.frame_index) +
                           "): " + why);
   };
-  const bool last_of_frame =
-      h.type == M4D_PACKET_MLP_WEIGHTS || h.type == M4D_PACKET_COMPENSATION;
+  const bool last_of_frame = h.type == M4D_PACKET_MLP_WEIGHTS || h.type == M4D_PACKET_COMPENSATION;
   if (h.end_of_frame() != last_of_frame) return order_error("wrong end_of_frame flag");
   switch (h.type) {
     case M4D_PACKET_KEYFRAME_STATIC:
@@ -151,10 +157,10 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
   if (h.type != M4D_PACKET_SEQUENCE_HEADER) M4D_RETURN_IF_ERROR(CheckOrder(h));
 
   const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC;
-  const bool decode = h.type == M4D_PACKET_SEQUENCE_HEADER
-                          ? true
-                          : (is_static ? wants(M4D_LAYER_STATIC) && !background_
-                                       : wants(M4D_LAYER_DYNAMIC));
+  const bool decode =
+      h.type == M4D_PACKET_SEQUENCE_HEADER
+          ? true
+          : (is_static ? wants(M4D_LAYER_STATIC) && !background_ : wants(M4D_LAYER_DYNAMIC));
   if (decode && options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
     return Status(M4D_ERR_CHECKSUM, std::string(PacketName(h.type)) + " (frame " +
                                         std::to_string(h.frame_index) + "): payload CRC mismatch");
@@ -195,8 +201,8 @@ Status Decoder::DecodeSequenceHeader(const PacketHeader& h, const uint8_t* paylo
     return Status(M4D_ERR_CHECKSUM, "SEQUENCE_HEADER: payload CRC mismatch");
   }
   ByteReader reader(payload, h.payload_size);
-  const uint32_t max_grid = options_.max_grid_values == 0 ? kMaxGridValues
-                                                          : options_.max_grid_values;
+  const uint32_t max_grid =
+      options_.max_grid_values == 0 ? kMaxGridValues : options_.max_grid_values;
   M4D_RETURN_IF_ERROR(ReadSequenceHeader(&reader, max_grid, &sequence_));
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "SEQUENCE_HEADER"));
   auto empty_static = std::make_shared<GaussianSet>(options_.allocator);

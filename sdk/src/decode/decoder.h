@@ -61,8 +61,14 @@ class Decoder {
   const SequenceHeader& sequence_header() const { return sequence_; }
 
  private:
-  enum class Stage { kNeedSequenceHeader, kKeyframeStart, kKeyframeStatic, kKeyframeDynamic,
-                     kInter, kMotion };
+  enum class Stage {
+    kNeedSequenceHeader,
+    kKeyframeStart,
+    kKeyframeStatic,
+    kKeyframeDynamic,
+    kInter,
+    kMotion
+  };
 
   Status Dispatch(const PacketHeader& header, const uint8_t* payload);
   Status CheckOrder(const PacketHeader& header);

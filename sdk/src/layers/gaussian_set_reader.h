@@ -12,8 +12,15 @@
 namespace m4d {
 
 // Attribute groups of a Gaussian set, in coding order (spec 5.4).
-enum GaussianGroup { kGroupPosition, kGroupLogScale, kGroupRotation, kGroupOpacity, kGroupShDc,
-                     kGroupShRest, kNumGaussianGroups };
+enum GaussianGroup {
+  kGroupPosition,
+  kGroupLogScale,
+  kGroupRotation,
+  kGroupOpacity,
+  kGroupShDc,
+  kGroupShRest,
+  kNumGaussianGroups
+};
 
 // Number of components of a group for the given SH degree (0 for sh_rest at degree 0).
 int GaussianGroupComponents(int group, int sh_degree);
