@@ -1,0 +1,87 @@
+// Front-to-back blending of a pixel group: eight horizontally adjacent pixels of one tile row,
+// one per lane. This walk makes every decision of the rasterizer (which splat touches which
+// pixel, which alpha is skipped, where a pixel stops), and both the forward pass and the
+// backward pass's replay call it, so they agree bit for bit.
+//
+// A splat is evaluated at a pixel only if the pixel centre lies within `radius` of the mean
+// along both axes (the 3-sigma square of the reference rasterizer, applied per pixel rather
+// than per tile, so the image does not depend on the tiling).
+#ifndef M4D_RENDER_PIXEL_GROUP_BLEND_H_
+#define M4D_RENDER_PIXEL_GROUP_BLEND_H_
+
+#include <cstddef>
+#include <cstdint>
+
+#include "render/lanes.h"
+#include "render/splat_alpha.h"
+#include "render/tile_splats.h"
+
+namespace m4d {
+
+struct PixelGroup {
+  int x0 = 0, y = 0;  // first pixel's column, row
+  Lanes px;           // pixel centres, x0 + lane + 0.5
+  float py = 0;       // row centre, y + 0.5
+  Lanes transmittance;
+  LaneMask done;  // lanes that stopped or lie outside the image
+  LaneMask last;  // 1 + tile position of the last splat blended into the lane (0: none)
+};
+
+inline PixelGroup StartPixelGroup(int x0, int y, int width) {
+  PixelGroup g;
+  g.x0 = x0;
+  g.y = y;
+  g.py = static_cast<float>(y) + 0.5f;
+  for (int l = 0; l < kLanes; ++l) {
+    g.px[l] = static_cast<float>(x0 + l) + 0.5f;
+    g.done[l] = x0 + l < width ? 0 : -1;
+  }
+  g.transmittance = Broadcast(1.0f);
+  g.last = LaneMask{};
+  return g;
+}
+
+// Walks the tile's splats front to back, blending into the group until every lane is done.
+// For each splat j that blends into at least one lane it calls
+//   on_blend(j, alpha, transmittance)
+// with alpha zero in the lanes it does not blend into, and the transmittance in front of it.
+template <typename OnBlend>
+inline void BlendPixelGroup(const TileSplats& s, PixelGroup* g, OnBlend&& on_blend) {
+  const float first_x = g->px[0], last_x = g->px[kLanes - 1];
+  for (size_t base = 0; base < s.count; base += kLanes) {
+    // Splats whose square reaches this row and some lane of the group; conservative with
+    // respect to the per-lane test below (same subtractions, monotone rounding).
+    const Lanes r = LoadLanes(s.radius + base);
+    const Lanes dy8 = LoadLanes(s.mean_y + base) - g->py;
+    const Lanes mx = LoadLanes(s.mean_x + base);
+    const Lanes dx_first = mx - first_x, dx_last = mx - last_x;
+    unsigned hits = MaskBits((dy8 <= r) & (dy8 >= -r) & (dx_last <= r) & (dx_first >= -r));
+    while (hits != 0) {
+      const size_t j = base + static_cast<size_t>(__builtin_ctz(hits));
+      hits &= hits - 1;
+      const float dy = s.mean_y[j] - g->py;
+      const Lanes dx = s.mean_x[j] - g->px;
+      const float radius = s.radius[j];
+      const Lanes power = SplatPower(dx, dy, s.conic_a[j], s.conic_b[j], s.conic_c[j]);
+      const Lanes raw = s.opacity[j] * ExpNonPositive(power);
+      const Lanes alpha = raw < kMaxAlpha ? raw : Broadcast(kMaxAlpha);
+      LaneMask blend =
+          (dx <= radius) & (dx >= -radius) & (power <= 0.0f) & (alpha >= kMinAlpha) & ~g->done;
+      if (!AnyLane(blend)) continue;
+      const Lanes next_t = g->transmittance * (1.0f - alpha);
+      const LaneMask stop = blend & (next_t < kMinTransmittance);
+      g->done |= stop;
+      blend &= ~stop;
+      if (AnyLane(blend)) {
+        on_blend(j, blend ? alpha : Lanes{}, g->transmittance);
+        g->transmittance = blend ? next_t : g->transmittance;
+        g->last = blend ? static_cast<int32_t>(j + 1) : g->last;
+      }
+      if (AllLanes(g->done)) return;
+    }
+  }
+}
+
+}  // namespace m4d
+
+#endif  // M4D_RENDER_PIXEL_GROUP_BLEND_H_

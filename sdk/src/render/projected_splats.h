@@ -1,0 +1,38 @@
+// ProjectedSplats: per Gaussian (global index), what preprocessing computes for the
+// rasterizer, as structure of arrays. Culled Gaussians have radius 0 and zero fields.
+#ifndef M4D_RENDER_PROJECTED_SPLATS_H_
+#define M4D_RENDER_PROJECTED_SPLATS_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace m4d {
+
+struct ProjectedSplats {
+  std::vector<float> mean_x, mean_y;  // projected mean u, v in pixels (see camera.h)
+  std::vector<float> depth;           // camera-space z
+  // ceil(3 sqrt(largest eigenvalue of the 2D covariance)) in pixels; 0 when culled. A pixel
+  // is evaluated only if its centre lies within this distance of the mean along x and y.
+  std::vector<float> radius;
+  std::vector<float> conic_a, conic_b, conic_c;  // inverse 2D covariance [[a, b], [b, c]]
+  std::vector<float> opacity;
+  std::vector<float> color[3];         // SH colour + 0.5, clamped at 0
+  std::vector<uint8_t> color_clamped;  // bit c set: channel c was clamped (no gradient)
+  // Tiles the splat may touch: first column, first row, last column, last row (inclusive).
+  std::vector<uint16_t> tile_rect;  // 4 per Gaussian
+
+  size_t size() const { return radius.size(); }
+  void Resize(size_t n) {
+    for (std::vector<float>* v : {&mean_x, &mean_y, &depth, &radius, &conic_a, &conic_b, &conic_c,
+                                  &opacity, &color[0], &color[1], &color[2]}) {
+      v->resize(n);
+    }
+    color_clamped.resize(n);
+    tile_rect.resize(4 * n);
+  }
+};
+
+}  // namespace m4d
+
+#endif  // M4D_RENDER_PROJECTED_SPLATS_H_

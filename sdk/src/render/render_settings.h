@@ -1,0 +1,25 @@
+// RenderSettings: how RenderForward renders (see splat_renderer.h).
+#ifndef M4D_RENDER_RENDER_SETTINGS_H_
+#define M4D_RENDER_RENDER_SETTINGS_H_
+
+#include <cstddef>
+
+namespace m4d {
+
+constexpr size_t kMaxRenderGaussians = size_t{1} << 24;  // summed over layers
+constexpr int kMaxRenderThreads = 256;
+
+struct RenderSettings {
+  // Worker threads including the caller's; 0: the hardware's concurrency.
+  int threads = 0;
+  // Active SH degree (0..3): each layer is evaluated up to min(sh_degree, its own degree).
+  int sh_degree = 3;
+  // Composited behind the splats: colour = C + T_final * background.
+  float background[3] = {0.0f, 0.0f, 0.0f};
+  // Also accumulate, per Gaussian, its blend weight sum_p alpha_i(p) T_i(p) over all pixels.
+  bool blend_weights = false;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_RENDER_RENDER_SETTINGS_H_

@@ -1,0 +1,145 @@
+#include "render/splat_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "layers/gaussian_set.h"
+#include "render/sh_evaluation.h"
+#include "render/splat_alpha.h"
+#include "render/splat_geometry.h"
+
+namespace m4d {
+namespace {
+
+void Cull(size_t g, ProjectedSplats* out) {
+  out->mean_x[g] = out->mean_y[g] = out->depth[g] = out->radius[g] = 0.0f;
+  out->conic_a[g] = out->conic_b[g] = out->conic_c[g] = out->opacity[g] = 0.0f;
+  for (int c = 0; c < 3; ++c) out->color[c][g] = 0.0f;
+  out->color_clamped[g] = 0;
+  for (int k = 0; k < 4; ++k) out->tile_rect[4 * g + k] = 0;
+}
+
+// Tiles covered by the pixels whose centre may lie within `radius` of `mean` along one axis
+// (one pixel of slack for rounding), clamped to [0, tiles). False when none.
+bool TileSpan(float mean, float radius, int tiles, uint16_t* first, uint16_t* last) {
+  const float lo = std::floor((mean - radius - 1.0f) / kTileSize);
+  const float hi = std::floor((mean + radius) / kTileSize);
+  if (!(hi >= 0.0f) || !(lo <= static_cast<float>(tiles - 1))) return false;
+  *first = static_cast<uint16_t>(std::max(lo, 0.0f));
+  *last = static_cast<uint16_t>(std::min(hi, static_cast<float>(tiles - 1)));
+  return true;
+}
+
+bool Finite3(const float* v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+// The colour of Gaussian i, or false when it is not finite.
+bool SplatColour(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree,
+                 size_t i, float colour[3], uint8_t* clamped) {
+  const float* p = layer.positions + 3 * i;
+  float dir[3];
+  for (int a = 0; a < 3; ++a) dir[a] = p[a] - pc.centre[a];
+  const float inv_len = 1.0f / std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+  float basis[kMaxShCoefficients];
+  ShBasis(degree, dir[0] * inv_len, dir[1] * inv_len, dir[2] * inv_len, basis);
+  const size_t stride = 3 * static_cast<size_t>(ShCoefficients(layer.sh_degree));
+  ShColour(basis, ShCoefficients(degree), layer.sh + stride * i, colour);
+  *clamped = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (colour[c] < 0.0f) {
+      colour[c] = 0.0f;
+      *clamped |= static_cast<uint8_t>(1u << c);
+    }
+  }
+  return Finite3(colour);
+}
+
+void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree, size_t i,
+                size_t g, ProjectedSplats* out) {
+  const float* p = layer.positions + 3 * i;
+  const float* r = pc.rotation;
+  float t[3];
+  for (int a = 0; a < 3; ++a) {
+    t[a] = r[3 * a] * p[0] + r[3 * a + 1] * p[1] + r[3 * a + 2] * p[2] + pc.translation[a];
+  }
+  const float opacity = 1.0f / (1.0f + std::exp(-layer.opacity_logits[i]));
+  const float* q = layer.rotations + 4 * i;
+  const float q_norm2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  const float* log_scale = layer.log_scales + 3 * i;
+  const float scale[3] = {std::exp(log_scale[0]), std::exp(log_scale[1]), std::exp(log_scale[2])};
+  if (!(t[2] > pc.near_plane) || !Finite3(t) || !(opacity >= kMinAlpha) || !(q_norm2 > 0.0f) ||
+      !std::isfinite(q_norm2) || !Finite3(scale)) {
+    return Cull(g, out);
+  }
+  const float inv_q = 1.0f / std::sqrt(q_norm2);
+  const float unit_q[4] = {q[0] * inv_q, q[1] * inv_q, q[2] * inv_q, q[3] * inv_q};
+  float rot[9], cov3[9], jw[6], a, b, c;
+  QuaternionToRotation(unit_q, rot);
+  Covariance3D(rot, scale, cov3);
+  ProjectionJacobian(t, pc.fx, pc.fy, pc.limit_x, pc.limit_y, pc.rotation, jw);
+  ProjectCovariance(jw, cov3, &a, &b, &c);
+  a += kCovarianceDilation;
+  c += kCovarianceDilation;
+  const float det = a * c - b * b;
+  if (!(det > 0.0f) || !std::isfinite(det)) return Cull(g, out);
+  const float mid = 0.5f * (a + c);
+  const float lambda = mid + std::sqrt(std::max(0.1f, mid * mid - det));
+  const float radius = std::ceil(3.0f * std::sqrt(lambda));
+  const float inv_z = 1.0f / t[2];
+  const float u = pc.fx * t[0] * inv_z + pc.cx;
+  const float v = pc.fy * t[1] * inv_z + pc.cy;
+  uint16_t rect[4];
+  if (!std::isfinite(radius) || !TileSpan(u, radius, pc.tiles_x, &rect[0], &rect[2]) ||
+      !TileSpan(v, radius, pc.tiles_y, &rect[1], &rect[3])) {
+    return Cull(g, out);
+  }
+  float colour[3];
+  uint8_t clamped;
+  if (!SplatColour(pc, layer, degree, i, colour, &clamped)) return Cull(g, out);
+  const float inv_det = 1.0f / det;
+  out->mean_x[g] = u;
+  out->mean_y[g] = v;
+  out->depth[g] = t[2];
+  out->radius[g] = radius;
+  out->conic_a[g] = c * inv_det;
+  out->conic_b[g] = -b * inv_det;
+  out->conic_c[g] = a * inv_det;
+  out->opacity[g] = opacity;
+  for (int k = 0; k < 3; ++k) out->color[k][g] = colour[k];
+  out->color_clamped[g] = clamped;
+  for (int k = 0; k < 4; ++k) out->tile_rect[4 * g + k] = rect[k];
+}
+
+}  // namespace
+
+ProjectionConstants MakeProjectionConstants(const Camera& camera) {
+  ProjectionConstants pc;
+  std::copy(camera.rotation, camera.rotation + 9, pc.rotation);
+  std::copy(camera.translation, camera.translation + 3, pc.translation);
+  CameraCentre(camera, pc.centre);
+  pc.fx = camera.fx;
+  pc.fy = camera.fy;
+  pc.cx = camera.cx;
+  pc.cy = camera.cy;
+  pc.near_plane = camera.near_plane;
+  const float w = static_cast<float>(camera.width), h = static_cast<float>(camera.height);
+  pc.limit_x[0] = (-camera.cx - kFrustumMargin * w) / camera.fx;
+  pc.limit_x[1] = (w - camera.cx + kFrustumMargin * w) / camera.fx;
+  pc.limit_y[0] = (-camera.cy - kFrustumMargin * h) / camera.fy;
+  pc.limit_y[1] = (h - camera.cy + kFrustumMargin * h) / camera.fy;
+  pc.width = camera.width;
+  pc.height = camera.height;
+  pc.tiles_x = (camera.width + kTileSize - 1) / kTileSize;
+  pc.tiles_y = (camera.height + kTileSize - 1) / kTileSize;
+  return pc;
+}
+
+void ProjectSplats(const ProjectionConstants& pc, const GaussianLayerView& layer, int sh_degree,
+                   size_t begin, size_t end, size_t offset, ProjectedSplats* out) {
+  const int degree = std::min(sh_degree, layer.sh_degree);
+  for (size_t i = begin; i < end; ++i) ProjectOne(pc, layer, degree, i, offset + i, out);
+}
+
+}  // namespace m4d

@@ -1,0 +1,149 @@
+#include "render/splat_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+#include "render/splat_projection.h"
+#include "render/tile_rasterizer.h"
+
+namespace m4d {
+namespace {
+
+constexpr size_t kGaussianChunk = 512;
+
+Status InvalidArg(const char* message) { return Status(M4D_ERR_INVALID_ARG, message); }
+
+Status ValidateSettings(const RenderSettings& s) {
+  if (s.threads < 0 || s.threads > kMaxRenderThreads) {
+    return InvalidArg("render: thread count out of range");
+  }
+  if (s.sh_degree < 0 || s.sh_degree > 3) return InvalidArg("render: SH degree out of range");
+  for (float b : s.background) {
+    if (!std::isfinite(b)) return InvalidArg("render: background must be finite");
+  }
+  return Status::Ok();
+}
+
+Status ValidateLayers(const GaussianLayerView* layers, int layer_count) {
+  if (layer_count < 0 || (layer_count > 0 && !layers)) {
+    return InvalidArg("render: bad layer list");
+  }
+  size_t total = 0;
+  for (int l = 0; l < layer_count; ++l) {
+    const GaussianLayerView& v = layers[l];
+    if (v.sh_degree < 0 || v.sh_degree > 3) return InvalidArg("render: layer SH degree above 3");
+    if (v.count > kMaxRenderGaussians - total) return LimitError("render: too many Gaussians");
+    total += v.count;
+    if (v.count > 0 &&
+        (!v.positions || !v.log_scales || !v.rotations || !v.opacity_logits || !v.sh)) {
+      return InvalidArg("render: layer with null arrays");
+    }
+  }
+  return Status::Ok();
+}
+
+void PrepareState(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+                  const RenderSettings& settings, RenderContext* ctx) {
+  if (!ctx->pool || ctx->pool_threads != settings.threads) {
+    ctx->pool.reset();
+    ctx->pool = std::make_unique<ThreadPool>(settings.threads);
+    ctx->pool_threads = settings.threads;
+  }
+  ctx->camera = camera;
+  ctx->settings = settings;
+  ctx->layers.assign(layers, layers + layer_count);
+  ctx->gaussian_count = 0;
+  for (const GaussianLayerView& v : ctx->layers) ctx->gaussian_count += v.count;
+}
+
+void Project(const ProjectionConstants& pc, RenderContext* ctx) {
+  ctx->splats.Resize(ctx->gaussian_count);
+  ParallelForChunks(ctx->pool.get(), ctx->gaussian_count, kGaussianChunk,
+                    [&](size_t begin, size_t end, int) {
+                      size_t offset = 0;
+                      for (const GaussianLayerView& layer : ctx->layers) {
+                        const size_t lo = std::max(begin, offset);
+                        const size_t hi = std::min(end, offset + layer.count);
+                        if (lo < hi) {
+                          ProjectSplats(pc, layer, ctx->settings.sh_degree, lo - offset,
+                                        hi - offset, offset, &ctx->splats);
+                        }
+                        offset += layer.count;
+                      }
+                    });
+}
+
+void Rasterize(const float* error_image, RenderContext* ctx) {
+  const size_t pixels = static_cast<size_t>(ctx->camera.width) * ctx->camera.height;
+  ctx->color.resize(3 * pixels);
+  ctx->alpha.resize(pixels);
+  ctx->final_transmittance.resize(pixels);
+  ctx->last_contributor.resize(pixels);
+  const bool weights = ctx->settings.blend_weights || error_image;
+  ctx->entry_weights.resize(weights ? 2 * ctx->bins.entries.size() : 0);
+  ctx->tile_buffers.resize(static_cast<size_t>(ctx->pool->size()));
+  for (TileSplatBuffer& b : ctx->tile_buffers) b.Reserve(ctx->bins.max_tile_entries);
+
+  TileTarget target;
+  target.width = ctx->camera.width;
+  target.height = ctx->camera.height;
+  target.background = ctx->settings.background;
+  target.color = ctx->color.data();
+  target.alpha = ctx->alpha.data();
+  target.final_transmittance = ctx->final_transmittance.data();
+  target.last_contributor = ctx->last_contributor.data();
+  target.entry_weights = weights ? ctx->entry_weights.data() : nullptr;
+  target.error_image = error_image;
+  const size_t tiles = static_cast<size_t>(ctx->bins.tiles_x) * ctx->bins.tiles_y;
+  ctx->pool->Run(tiles, [&](size_t tile, int worker) {
+    RasterizeTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker]);
+  });
+}
+
+// Sums each Gaussian's entry weights over its tiles, in a fixed order.
+void ReduceBlendWeights(bool blend_weights, bool error_weights, RenderContext* ctx) {
+  const size_t n = ctx->gaussian_count;
+  ctx->blend_weight.assign(blend_weights ? n : 0, 0.0f);
+  ctx->error_weight.assign(error_weights ? n : 0, 0.0f);
+  if (!blend_weights && !error_weights) return;
+  ParallelForChunks(ctx->pool.get(), n, kGaussianChunk, [&](size_t begin, size_t end, int) {
+    const TileBins& bins = ctx->bins;
+    for (size_t g = begin; g < end; ++g) {
+      float w = 0.0f, e = 0.0f;
+      for (uint32_t k = bins.gaussian_start[g]; k < bins.gaussian_start[g + 1]; ++k) {
+        w += ctx->entry_weights[2 * size_t{bins.entry_of[k]}];
+        e += ctx->entry_weights[2 * size_t{bins.entry_of[k]} + 1];
+      }
+      if (blend_weights) ctx->blend_weight[g] = w;
+      if (error_weights) ctx->error_weight[g] = e;
+    }
+  });
+}
+
+}  // namespace
+
+Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+                     const RenderSettings& settings, const float* error_image,
+                     RenderContext* context) {
+  if (!context) return InvalidArg("render: null context");
+  context->valid = false;
+  M4D_RETURN_IF_ERROR(ValidateCamera(camera));
+  M4D_RETURN_IF_ERROR(ValidateSettings(settings));
+  M4D_RETURN_IF_ERROR(ValidateLayers(layers, layer_count));
+  try {
+    PrepareState(camera, layers, layer_count, settings, context);
+    const ProjectionConstants pc = MakeProjectionConstants(camera);
+    Project(pc, context);
+    M4D_RETURN_IF_ERROR(
+        BinSplats(context->splats, pc.tiles_x, pc.tiles_y, context->pool.get(), &context->bins));
+    Rasterize(error_image, context);
+    ReduceBlendWeights(settings.blend_weights, error_image != nullptr, context);
+  } catch (const std::bad_alloc&) {
+    return Status(M4D_ERR_NOMEM, "render: out of memory");
+  }
+  context->valid = true;
+  return Status::Ok();
+}
+
+}  // namespace m4d

@@ -1,0 +1,33 @@
+// The SDK's reference renderer and the encoder's training forward pass: a CPU tile-based
+// 3D Gaussian splatting rasterizer with the conventions of the reference 3DGS implementation
+// (see splat_projection.h for preprocessing, splat_alpha.h and pixel_group_blend.h for
+// blending, camera.h for the pixel grid).
+//
+// Work is spread over a persistent pool of threads: preprocessing over Gaussians, blending
+// over 16x16 tiles. The result does not depend on the thread count.
+#ifndef M4D_RENDER_SPLAT_RENDERER_H_
+#define M4D_RENDER_SPLAT_RENDERER_H_
+
+#include "common/status.h"
+#include "render/camera.h"
+#include "render/gaussian_layer_view.h"
+#include "render/render_context.h"
+#include "render/render_settings.h"
+
+namespace m4d {
+
+// Renders layers[0..layer_count) together (Gaussians indexed globally in concatenation
+// order) into context: colour, alpha and per-Gaussian projection results, plus, when
+// settings.blend_weights, each Gaussian's blend weight, and when error_image (width * height
+// floats) is not null, each Gaussian's error-weighted blend weight. Fails with
+// M4D_ERR_INVALID_ARG for a null context, a bad camera (ValidateCamera), a bad setting or an
+// inconsistent layer (null arrays, SH degree above 3), M4D_ERR_LIMIT beyond
+// kMaxRenderGaussians Gaussians or kMaxTileEntries (splat, tile) pairs, M4D_ERR_NOMEM when
+// memory runs out. Gaussians with non-finite values are culled.
+Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+                     const RenderSettings& settings, const float* error_image,
+                     RenderContext* context);
+
+}  // namespace m4d
+
+#endif  // M4D_RENDER_SPLAT_RENDERER_H_

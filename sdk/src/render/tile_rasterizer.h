@@ -1,0 +1,34 @@
+// Forward blending of one tile: every pixel group of the tile walks the tile's splats front
+// to back (pixel_group_blend.h) and writes its colour, alpha, final transmittance and last
+// contributor; optionally each entry's blend weight and error-weighted blend weight.
+#ifndef M4D_RENDER_TILE_RASTERIZER_H_
+#define M4D_RENDER_TILE_RASTERIZER_H_
+
+#include <cstddef>
+#include <cstdint>
+
+#include "render/projected_splats.h"
+#include "render/tile_binning.h"
+#include "render/tile_splats.h"
+
+namespace m4d {
+
+struct TileTarget {
+  int width = 0, height = 0;
+  const float* background = nullptr;  // 3 floats
+  float* color = nullptr;
+  float* alpha = nullptr;
+  float* final_transmittance = nullptr;
+  uint32_t* last_contributor = nullptr;
+  // Optional: 2 floats per tile entry (sum of alpha T, sum of alpha T e), and the error image e
+  // (width * height, or null for zero).
+  float* entry_weights = nullptr;
+  const float* error_image = nullptr;
+};
+
+void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
+                   const TileTarget& target, TileSplatBuffer* buffer);
+
+}  // namespace m4d
+
+#endif  // M4D_RENDER_TILE_RASTERIZER_H_
