@@ -61,6 +61,7 @@ struct RefDecisions {
   std::vector<uint8_t> color_clamped;     // per Gaussian, bit per channel
   std::vector<uint8_t> jacobian_clamped;  // per Gaussian: 1 x low, 2 x high, 4 y low, 8 y high
   std::vector<std::vector<std::pair<int, bool>>> blended;  // per pixel: (Gaussian, alpha clamped)
+  std::vector<bool> stopped;  // per pixel: stopped at the transmittance threshold
 };
 
 struct RefImage {
@@ -127,7 +128,10 @@ class ReferenceRenderer {
     }
     std::stable_sort(order.begin(), order.end(),
                      [&](int a, int b) { return splats[a].depth < splats[b].depth; });
-    if (record) d->blended.assign(static_cast<size_t>(w) * h, {});
+    if (record) {
+      d->blended.assign(static_cast<size_t>(w) * h, {});
+      d->stopped.assign(static_cast<size_t>(w) * h, false);
+    }
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
@@ -141,7 +145,10 @@ class ReferenceRenderer {
             double alpha;
             bool clamped;
             if (!Alpha(splats[g], x + 0.5, y + 0.5, &alpha, &clamped)) continue;
-            if (t * (1.0 - alpha) < 0.0001) break;
+            if (t * (1.0 - alpha) < 0.0001) {
+              d->stopped[p] = true;
+              break;
+            }
             d->blended[p].push_back({g, clamped});
             blend(g, alpha);
           }

@@ -1,0 +1,128 @@
+#include "render/rasterizer_backward.h"
+
+#include <algorithm>
+
+#include "render/lanes.h"
+#include "render/pixel_group_blend.h"
+#include "render/splat_alpha.h"
+#include "render/splat_projection.h"
+
+namespace m4d {
+
+void BlendRecord::Reserve(size_t max_splats) {
+  if (splat_.size() >= max_splats && !splat_.empty()) return;
+  const size_t n = std::max<size_t>(max_splats, 1);
+  splat_.resize(n);
+  alpha_.resize(kLanes * n);
+  transmittance_.resize(kLanes * n);
+}
+
+void BlendRecord::Push(uint32_t splat, const float* alpha, const float* transmittance) {
+  splat_[size_] = splat;
+  std::copy(alpha, alpha + kLanes, &alpha_[kLanes * size_]);
+  std::copy(transmittance, transmittance + kLanes, &transmittance_[kLanes * size_]);
+  ++size_;
+}
+
+const float* BlendRecord::alpha(size_t h) const { return &alpha_[kLanes * h]; }
+const float* BlendRecord::transmittance(size_t h) const { return &transmittance_[kLanes * h]; }
+
+namespace {
+
+// Per-lane dL/dC and dL/dA of a pixel group (zero outside the image).
+struct GroupLoss {
+  Lanes color[3];
+  Lanes alpha;
+};
+
+GroupLoss LoadGroupLoss(const TileGradientTarget& target, const PixelGroup& g) {
+  GroupLoss loss = {{Lanes{}, Lanes{}, Lanes{}}, Lanes{}};
+  const size_t row = static_cast<size_t>(g.y) * target.width;
+  for (int l = 0; l < kLanes && g.x0 + l < target.width; ++l) {
+    const size_t p = row + g.x0 + l;
+    for (int c = 0; c < 3; ++c) loss.color[c][l] = target.dl_dcolor[3 * p + c];
+    if (target.dl_dalpha) loss.alpha[l] = target.dl_dalpha[p];
+  }
+  return loss;
+}
+
+bool MatchesForward(const TileGradientTarget& target, const PixelGroup& g) {
+  const size_t row = static_cast<size_t>(g.y) * target.width;
+  for (int l = 0; l < kLanes && g.x0 + l < target.width; ++l) {
+    const size_t p = row + g.x0 + l;
+    if (g.transmittance[l] != target.final_transmittance[p] ||
+        static_cast<uint32_t>(g.last[l]) != target.last_contributor[p]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Walks the recorded splats of group g back to front, adding to their entry gradients.
+void WalkBack(const TileSplats& s, const PixelGroup& g, const BlendRecord& record,
+              const GroupLoss& loss, const float* background, float* entry_gradients) {
+  Lanes behind[3] = {Broadcast(background[0]), Broadcast(background[1]), Broadcast(background[2])};
+  Lanes behind_alpha{};
+  for (size_t h = record.size(); h-- > 0;) {
+    const size_t j = record.splat(h);
+    const Lanes alpha = LoadLanes(record.alpha(h));
+    const Lanes t = LoadLanes(record.transmittance(h));
+    const Lanes one_minus = 1.0f - alpha;
+    Lanes dl_dalpha = loss.alpha * (1.0f - behind_alpha);
+    behind_alpha = alpha + one_minus * behind_alpha;
+    float* grad = entry_gradients + kEntryGradients * j;
+    const Lanes weight = alpha * t;
+    for (int c = 0; c < 3; ++c) {
+      const float colour = s.color[c][j];
+      dl_dalpha += loss.color[c] * (colour - behind[c]);
+      behind[c] = alpha * colour + one_minus * behind[c];
+      grad[kGradColorR + c] += LaneSum(loss.color[c] * weight);
+    }
+    // Lanes not blended (alpha 0) and clamped alphas pass nothing to opacity and shape.
+    const LaneMask live = (alpha > 0.0f) & (alpha < kMaxAlpha);
+    dl_dalpha = live ? dl_dalpha * t : Lanes{};
+    const float opacity = s.opacity[j];
+    const Lanes dl_dpower = dl_dalpha * alpha;  // alpha = opacity * exp(power)
+    grad[kGradOpacity] += LaneSum(dl_dalpha * alpha) / opacity;
+    const float a = s.conic_a[j], b = s.conic_b[j], c = s.conic_c[j];
+    const Lanes dx = s.mean_x[j] - g.px;
+    const float dy = s.mean_y[j] - g.py;
+    grad[kGradMeanX] -= LaneSum(dl_dpower * (a * dx + b * dy));
+    grad[kGradMeanY] -= LaneSum(dl_dpower * (c * dy + b * dx));
+    grad[kGradConicA] -= 0.5f * LaneSum(dl_dpower * dx * dx);
+    grad[kGradConicB] -= LaneSum(dl_dpower * dx) * dy;
+    grad[kGradConicC] -= 0.5f * LaneSum(dl_dpower) * (dy * dy);
+  }
+}
+
+}  // namespace
+
+bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
+                       const TileGradientTarget& target, TileSplatBuffer* buffer,
+                       BlendRecord* record) {
+  const uint32_t begin = bins.tile_start[tile], end = bins.tile_start[tile + 1];
+  const TileSplats& s = buffer->Gather(splats, bins.entries.data() + begin, end - begin);
+  float* entry_gradients = target.entry_gradients + kEntryGradients * size_t{begin};
+  std::fill(entry_gradients, entry_gradients + kEntryGradients * size_t{end - begin}, 0.0f);
+  const int tx = static_cast<int>(tile % bins.tiles_x), ty = static_cast<int>(tile / bins.tiles_x);
+  const int x_end = std::min(target.width, (tx + 1) * kTileSize);
+  const int y_end = std::min(target.height, (ty + 1) * kTileSize);
+  bool matches = true;
+  for (int y = ty * kTileSize; y < y_end; ++y) {
+    for (int x0 = tx * kTileSize; x0 < x_end; x0 += kLanes) {
+      PixelGroup group = StartPixelGroup(x0, y, target.width);
+      record->Clear();
+      BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t) {
+        float a[kLanes], tr[kLanes];
+        StoreLanes(alpha, a);
+        StoreLanes(t, tr);
+        record->Push(static_cast<uint32_t>(j), a, tr);
+      });
+      matches = matches && MatchesForward(target, group);
+      WalkBack(s, group, *record, LoadGroupLoss(target, group), target.background, entry_gradients);
+    }
+  }
+  return matches;
+}
+
+}  // namespace m4d

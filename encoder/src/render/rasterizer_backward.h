@@ -1,0 +1,75 @@
+// Backward of the per-tile blending: for each pixel group of a tile, replay the forward walk
+// (the SDK's BlendPixelGroup, so every alpha and every skip decision is recomputed bit for
+// bit; this file is compiled without floating-point contraction for that), check that it
+// ends where the forward pass ended, then walk the blended splats back to front with the
+// exact transmittances and accumulate, per tile entry, the gradients of the splat's 2D
+// quantities.
+//
+// With C = sum_i c_i alpha_i T_i + T_final bg and A = 1 - T_final, the walk keeps
+// R_i = (what lies behind splat i) / T_(i+1), starting from bg, and RA_i likewise for A:
+// dC/dalpha_i = T_i (c_i - R_i) and dA/dalpha_i = T_i (1 - RA_i). A clamped alpha (0.99)
+// is constant: its splat then gets no gradient through alpha.
+#ifndef M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
+#define M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "render/projected_splats.h"
+#include "render/tile_binning.h"
+#include "render/tile_splats.h"
+
+namespace m4d {
+
+// Gradients kept per tile entry, in this order.
+enum EntryGradient {
+  kGradMeanX,
+  kGradMeanY,
+  kGradConicA,
+  kGradConicB,
+  kGradConicC,
+  kGradOpacity,
+  kGradColorR,
+  kGradColorG,
+  kGradColorB,
+  kEntryGradients
+};
+
+// The splats one pixel group blended, front to back, with their alphas and transmittances.
+// Per-worker storage, reserved before a parallel section so that workers never allocate.
+class BlendRecord {
+ public:
+  void Reserve(size_t max_splats);
+  void Clear() { size_ = 0; }
+  size_t size() const { return size_; }
+  void Push(uint32_t splat, const float* alpha, const float* transmittance);
+  uint32_t splat(size_t h) const { return splat_[h]; }
+  const float* alpha(size_t h) const;
+  const float* transmittance(size_t h) const;
+
+ private:
+  size_t size_ = 0;
+  std::vector<uint32_t> splat_;
+  std::vector<float> alpha_, transmittance_;  // 8 lanes per splat
+};
+
+struct TileGradientTarget {
+  int width = 0, height = 0;
+  const float* background = nullptr;
+  const float* dl_dcolor = nullptr;  // width * height * 3
+  const float* dl_dalpha = nullptr;  // width * height, or null
+  const float* final_transmittance = nullptr;
+  const uint32_t* last_contributor = nullptr;
+  float* entry_gradients = nullptr;  // kEntryGradients per tile entry
+};
+
+// Writes the gradients of every entry of `tile`. Returns false if the replay of a pixel did
+// not reproduce the forward pass's final transmittance and last contributor.
+bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
+                       const TileGradientTarget& target, TileSplatBuffer* buffer,
+                       BlendRecord* record);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
