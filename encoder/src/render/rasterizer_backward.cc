@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "render/lane_sums.h"
 #include "render/lanes.h"
 #include "render/pixel_group_blend.h"
 #include "render/splat_alpha.h"
@@ -70,28 +71,34 @@ void WalkBack(const TileSplats& s, const PixelGroup& g, const BlendRecord& recor
     const Lanes one_minus = 1.0f - alpha;
     Lanes dl_dalpha = loss.alpha * (1.0f - behind_alpha);
     behind_alpha = alpha + one_minus * behind_alpha;
-    float* grad = entry_gradients + kEntryGradients * j;
     const Lanes weight = alpha * t;
+    Lanes terms[8];  // summed over lanes below
     for (int c = 0; c < 3; ++c) {
       const float colour = s.color[c][j];
       dl_dalpha += loss.color[c] * (colour - behind[c]);
       behind[c] = alpha * colour + one_minus * behind[c];
-      grad[kGradColorR + c] += LaneSum(loss.color[c] * weight);
+      terms[3 + c] = loss.color[c] * weight;
     }
     // Lanes not blended (alpha 0) and clamped alphas pass nothing to opacity and shape.
     const LaneMask live = (alpha > 0.0f) & (alpha < kMaxAlpha);
-    dl_dalpha = live ? dl_dalpha * t : Lanes{};
-    const float opacity = s.opacity[j];
-    const Lanes dl_dpower = dl_dalpha * alpha;  // alpha = opacity * exp(power)
-    grad[kGradOpacity] += LaneSum(dl_dalpha * alpha) / opacity;
-    const float a = s.conic_a[j], b = s.conic_b[j], c = s.conic_c[j];
+    const Lanes dl_dpower = live ? dl_dalpha * t * alpha : Lanes{};  // dalpha/dpower = alpha
     const Lanes dx = s.mean_x[j] - g.px;
+    terms[0] = dl_dpower;
+    terms[1] = dl_dpower * dx;
+    terms[2] = terms[1] * dx;
+    terms[6] = terms[7] = Lanes{};
+    const Lanes sums = LaneSums8(terms);
+    // power = -0.5 (a dx^2 + c dy^2) - b dx dy, dx = mean x - pixel x; alpha = o exp(power).
+    const float a = s.conic_a[j], b = s.conic_b[j], c = s.conic_c[j];
     const float dy = s.mean_y[j] - g.py;
-    grad[kGradMeanX] -= LaneSum(dl_dpower * (a * dx + b * dy));
-    grad[kGradMeanY] -= LaneSum(dl_dpower * (c * dy + b * dx));
-    grad[kGradConicA] -= 0.5f * LaneSum(dl_dpower * dx * dx);
-    grad[kGradConicB] -= LaneSum(dl_dpower * dx) * dy;
-    grad[kGradConicC] -= 0.5f * LaneSum(dl_dpower) * (dy * dy);
+    float* grad = entry_gradients + kEntryGradients * j;
+    grad[kGradMeanX] -= a * sums[1] + b * dy * sums[0];
+    grad[kGradMeanY] -= c * dy * sums[0] + b * sums[1];
+    grad[kGradConicA] -= 0.5f * sums[2];
+    grad[kGradConicB] -= dy * sums[1];
+    grad[kGradConicC] -= 0.5f * dy * dy * sums[0];
+    grad[kGradOpacity] += sums[0] / s.opacity[j];
+    for (int k = 0; k < 3; ++k) grad[kGradColorR + k] += sums[3 + k];
   }
 }
 
@@ -99,11 +106,10 @@ void WalkBack(const TileSplats& s, const PixelGroup& g, const BlendRecord& recor
 
 bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
                        const TileGradientTarget& target, TileSplatBuffer* buffer,
-                       BlendRecord* record) {
+                       BlendRecord* record, float* accumulator) {
   const uint32_t begin = bins.tile_start[tile], end = bins.tile_start[tile + 1];
   const TileSplats& s = buffer->Gather(splats, bins.entries.data() + begin, end - begin);
-  float* entry_gradients = target.entry_gradients + kEntryGradients * size_t{begin};
-  std::fill(entry_gradients, entry_gradients + kEntryGradients * size_t{end - begin}, 0.0f);
+  std::fill(accumulator, accumulator + kEntryGradients * size_t{end - begin}, 0.0f);
   const int tx = static_cast<int>(tile % bins.tiles_x), ty = static_cast<int>(tile / bins.tiles_x);
   const int x_end = std::min(target.width, (tx + 1) * kTileSize);
   const int y_end = std::min(target.height, (ty + 1) * kTileSize);
@@ -119,8 +125,12 @@ bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size
         record->Push(static_cast<uint32_t>(j), a, tr);
       });
       matches = matches && MatchesForward(target, group);
-      WalkBack(s, group, *record, LoadGroupLoss(target, group), target.background, entry_gradients);
+      WalkBack(s, group, *record, LoadGroupLoss(target, group), target.background, accumulator);
     }
+  }
+  for (uint32_t j = 0; j < end - begin; ++j) {
+    std::copy(accumulator + kEntryGradients * j, accumulator + kEntryGradients * (j + 1),
+              target.slot_gradients + kEntryGradients * size_t{bins.entry_slot[begin + j]});
   }
   return matches;
 }

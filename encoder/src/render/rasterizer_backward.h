@@ -3,7 +3,7 @@
 // bit; this file is compiled without floating-point contraction for that), check that it
 // ends where the forward pass ended, then walk the blended splats back to front with the
 // exact transmittances and accumulate, per tile entry, the gradients of the splat's 2D
-// quantities.
+// quantities; at the end of the tile they go to the entries' slots (tile_binning.h).
 //
 // With C = sum_i c_i alpha_i T_i + T_final bg and A = 1 - T_final, the walk keeps
 // R_i = (what lies behind splat i) / T_(i+1), starting from bg, and RA_i likewise for A:
@@ -22,7 +22,7 @@
 
 namespace m4d {
 
-// Gradients kept per tile entry, in this order.
+// Gradients kept per slot, in this order.
 enum EntryGradient {
   kGradMeanX,
   kGradMeanY,
@@ -61,14 +61,15 @@ struct TileGradientTarget {
   const float* dl_dalpha = nullptr;  // width * height, or null
   const float* final_transmittance = nullptr;
   const uint32_t* last_contributor = nullptr;
-  float* entry_gradients = nullptr;  // kEntryGradients per tile entry
+  float* slot_gradients = nullptr;  // kEntryGradients per slot
 };
 
-// Writes the gradients of every entry of `tile`. Returns false if the replay of a pixel did
-// not reproduce the forward pass's final transmittance and last contributor.
+// Writes the gradients of every entry of `tile` to its slot, using accumulator (per-worker
+// scratch of kEntryGradients * bins.max_tile_entries floats). Returns false if the replay of
+// a pixel did not reproduce the forward pass's final transmittance and last contributor.
 bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
                        const TileGradientTarget& target, TileSplatBuffer* buffer,
-                       BlendRecord* record);
+                       BlendRecord* record, float* accumulator);
 
 }  // namespace m4d
 

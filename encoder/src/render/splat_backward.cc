@@ -38,11 +38,11 @@ bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, RenderCo
   target.dl_dalpha = dl_dalpha;
   target.final_transmittance = ctx->final_transmittance.data();
   target.last_contributor = ctx->last_contributor.data();
-  target.entry_gradients = ws->entry_gradients.data();
+  target.slot_gradients = ws->slot_gradients.data();
   const size_t tiles = static_cast<size_t>(ctx->bins.tiles_x) * ctx->bins.tiles_y;
   ctx->pool->Run(tiles, [&](size_t tile, int worker) {
     if (!BackpropagateTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker],
-                           &ws->records[worker])) {
+                           &ws->records[worker], ws->accumulators[worker].data())) {
       ws->replay_mismatch[worker] = 1;
     }
   });
@@ -50,11 +50,11 @@ bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, RenderCo
          ws->replay_mismatch.end();
 }
 
-// Sums the entry gradients of Gaussian g over its tiles, in a fixed order.
+// Sums the gradients of Gaussian g over its tiles, in a fixed order.
 SplatGradient GatherSplatGradient(const RenderContext& ctx, const BackwardWorkspace& ws, size_t g) {
   float sum[kEntryGradients] = {};
-  for (uint32_t k = ctx.bins.gaussian_start[g]; k < ctx.bins.gaussian_start[g + 1]; ++k) {
-    const float* e = &ws.entry_gradients[kEntryGradients * size_t{ctx.bins.entry_of[k]}];
+  for (size_t k = ctx.bins.gaussian_start[g]; k < ctx.bins.gaussian_start[g + 1]; ++k) {
+    const float* e = &ws.slot_gradients[kEntryGradients * k];
     for (int f = 0; f < kEntryGradients; ++f) sum[f] += e[f];
   }
   SplatGradient grad;
@@ -107,9 +107,16 @@ Status RenderBackward(const float* dl_dcolor, const float* dl_dalpha, RenderCont
   M4D_RETURN_IF_ERROR(ValidateOutputs(*context, out));
   try {
     const size_t workers = static_cast<size_t>(context->pool->size());
-    workspace->entry_gradients.resize(kEntryGradients * context->bins.entries.size());
+    const size_t max_entries = context->bins.max_tile_entries;
+    workspace->slot_gradients.resize(kEntryGradients * context->bins.entries.size());
     workspace->records.resize(workers);
-    for (BlendRecord& r : workspace->records) r.Reserve(context->bins.max_tile_entries);
+    workspace->accumulators.resize(workers);
+    for (size_t w = 0; w < workers; ++w) {
+      workspace->records[w].Reserve(max_entries);
+      if (workspace->accumulators[w].size() < kEntryGradients * max_entries) {
+        workspace->accumulators[w].resize(kEntryGradients * max_entries);
+      }
+    }
     workspace->replay_mismatch.assign(workers, 0);
   } catch (const std::bad_alloc&) {
     return Status(M4D_ERR_NOMEM, "backward: out of memory");

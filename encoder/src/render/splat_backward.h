@@ -28,9 +28,10 @@ struct SplatGradients {
 
 // Scratch of the backward pass, reused between calls.
 struct BackwardWorkspace {
-  std::vector<float> entry_gradients;  // kEntryGradients per tile entry
-  std::vector<BlendRecord> records;    // per worker
-  std::vector<char> replay_mismatch;   // per worker
+  std::vector<float> slot_gradients;             // kEntryGradients per slot
+  std::vector<BlendRecord> records;              // per worker
+  std::vector<std::vector<float>> accumulators;  // per worker
+  std::vector<char> replay_mismatch;             // per worker
 };
 
 // dl_dcolor: width * height * 3 (HWC like the colour output); dl_dalpha: width * height or

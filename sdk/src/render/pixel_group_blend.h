@@ -3,9 +3,10 @@
 // pixel, which alpha is skipped, where a pixel stops), and both the forward pass and the
 // backward pass's replay call it, so they agree bit for bit.
 //
-// A splat is evaluated at a pixel only if the pixel centre lies within `radius` of the mean
-// along both axes (the 3-sigma square of the reference rasterizer, applied per pixel rather
-// than per tile, so the image does not depend on the tiling).
+// A splat is evaluated at a pixel only if the pixel centre lies within its extent around the
+// mean (splat_projection.h): the 3-sigma square of the reference rasterizer, applied per
+// pixel rather than per tile so that the image does not depend on the tiling, narrowed to
+// where alpha can reach 1/255.
 #ifndef M4D_RENDER_PIXEL_GROUP_BLEND_H_
 #define M4D_RENDER_PIXEL_GROUP_BLEND_H_
 
@@ -51,22 +52,22 @@ inline void BlendPixelGroup(const TileSplats& s, PixelGroup* g, OnBlend&& on_ble
   for (size_t base = 0; base < s.count; base += kLanes) {
     // Splats whose square reaches this row and some lane of the group; conservative with
     // respect to the per-lane test below (same subtractions, monotone rounding).
-    const Lanes r = LoadLanes(s.radius + base);
+    const Lanes ex = LoadLanes(s.extent_x + base), ey = LoadLanes(s.extent_y + base);
     const Lanes dy8 = LoadLanes(s.mean_y + base) - g->py;
     const Lanes mx = LoadLanes(s.mean_x + base);
     const Lanes dx_first = mx - first_x, dx_last = mx - last_x;
-    unsigned hits = MaskBits((dy8 <= r) & (dy8 >= -r) & (dx_last <= r) & (dx_first >= -r));
+    unsigned hits = MaskBits((dy8 <= ey) & (dy8 >= -ey) & (dx_last <= ex) & (dx_first >= -ex));
     while (hits != 0) {
       const size_t j = base + static_cast<size_t>(__builtin_ctz(hits));
       hits &= hits - 1;
       const float dy = s.mean_y[j] - g->py;
       const Lanes dx = s.mean_x[j] - g->px;
-      const float radius = s.radius[j];
+      const float extent = s.extent_x[j];
       const Lanes power = SplatPower(dx, dy, s.conic_a[j], s.conic_b[j], s.conic_c[j]);
       const Lanes raw = s.opacity[j] * ExpNonPositive(power);
       const Lanes alpha = raw < kMaxAlpha ? raw : Broadcast(kMaxAlpha);
       LaneMask blend =
-          (dx <= radius) & (dx >= -radius) & (power <= 0.0f) & (alpha >= kMinAlpha) & ~g->done;
+          (dx <= extent) & (dx >= -extent) & (power <= 0.0f) & (alpha >= kMinAlpha) & ~g->done;
       if (!AnyLane(blend)) continue;
       const Lanes next_t = g->transmittance * (1.0f - alpha);
       const LaneMask stop = blend & (next_t < kMinTransmittance);

@@ -15,6 +15,9 @@ struct ProjectedSplats {
   // ceil(3 sqrt(largest eigenvalue of the 2D covariance)) in pixels; 0 when culled. A pixel
   // is evaluated only if its centre lies within this distance of the mean along x and y.
   std::vector<float> radius;
+  // Half extents along x and y of where the splat can blend: the radius, or less where its
+  // alpha is certainly below 1/255 (see splat_projection.h). Only these pixels are visited.
+  std::vector<float> extent_x, extent_y;
   std::vector<float> conic_a, conic_b, conic_c;  // inverse 2D covariance [[a, b], [b, c]]
   std::vector<float> opacity;
   std::vector<float> color[3];         // SH colour + 0.5, clamped at 0
@@ -24,8 +27,8 @@ struct ProjectedSplats {
 
   size_t size() const { return radius.size(); }
   void Resize(size_t n) {
-    for (std::vector<float>* v : {&mean_x, &mean_y, &depth, &radius, &conic_a, &conic_b, &conic_c,
-                                  &opacity, &color[0], &color[1], &color[2]}) {
+    for (std::vector<float>* v : {&mean_x, &mean_y, &depth, &radius, &extent_x, &extent_y, &conic_a,
+                                  &conic_b, &conic_c, &opacity, &color[0], &color[1], &color[2]}) {
       v->resize(n);
     }
     color_clamped.resize(n);

@@ -42,9 +42,10 @@ struct RenderContext {
 
   // --- Workers and their scratch.
   std::unique_ptr<ThreadPool> pool;
-  int pool_threads = -1;                      // the setting the pool was made for
-  std::vector<TileSplatBuffer> tile_buffers;  // per worker
-  std::vector<float> entry_weights;           // 2 per tile entry: weight, weighted error
+  int pool_threads = -1;                              // the setting the pool was made for
+  std::vector<TileSplatBuffer> tile_buffers;          // per worker
+  std::vector<std::vector<float>> tile_accumulators;  // per worker, per tile entry
+  std::vector<float> slot_weights;  // 2 per tile entry, by slot: weight, weighted error
 };
 
 }  // namespace m4d

@@ -14,17 +14,18 @@ namespace {
 
 void Cull(size_t g, ProjectedSplats* out) {
   out->mean_x[g] = out->mean_y[g] = out->depth[g] = out->radius[g] = 0.0f;
+  out->extent_x[g] = out->extent_y[g] = 0.0f;
   out->conic_a[g] = out->conic_b[g] = out->conic_c[g] = out->opacity[g] = 0.0f;
   for (int c = 0; c < 3; ++c) out->color[c][g] = 0.0f;
   out->color_clamped[g] = 0;
   for (int k = 0; k < 4; ++k) out->tile_rect[4 * g + k] = 0;
 }
 
-// Tiles covered by the pixels whose centre may lie within `radius` of `mean` along one axis
+// Tiles covered by the pixels whose centre may lie within `extent` of `mean` along one axis
 // (one pixel of slack for rounding), clamped to [0, tiles). False when none.
-bool TileSpan(float mean, float radius, int tiles, uint16_t* first, uint16_t* last) {
-  const float lo = std::floor((mean - radius - 1.0f) / kTileSize);
-  const float hi = std::floor((mean + radius) / kTileSize);
+bool TileSpan(float mean, float extent, int tiles, uint16_t* first, uint16_t* last) {
+  const float lo = std::floor((mean - extent - 1.0f) / kTileSize);
+  const float hi = std::floor((mean + extent) / kTileSize);
   if (!(hi >= 0.0f) || !(lo <= static_cast<float>(tiles - 1))) return false;
   *first = static_cast<uint16_t>(std::max(lo, 0.0f));
   *last = static_cast<uint16_t>(std::min(hi, static_cast<float>(tiles - 1)));
@@ -87,12 +88,15 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
   const float mid = 0.5f * (a + c);
   const float lambda = mid + std::sqrt(std::max(0.1f, mid * mid - det));
   const float radius = std::ceil(3.0f * std::sqrt(lambda));
+  const float k2 = 2.0f * std::log(255.0f * opacity) + 0.05f;
+  const float extent_x = std::min(radius, std::sqrt(k2 * a));
+  const float extent_y = std::min(radius, std::sqrt(k2 * c));
   const float inv_z = 1.0f / t[2];
   const float u = pc.fx * t[0] * inv_z + pc.cx;
   const float v = pc.fy * t[1] * inv_z + pc.cy;
   uint16_t rect[4];
-  if (!std::isfinite(radius) || !TileSpan(u, radius, pc.tiles_x, &rect[0], &rect[2]) ||
-      !TileSpan(v, radius, pc.tiles_y, &rect[1], &rect[3])) {
+  if (!std::isfinite(radius) || !TileSpan(u, extent_x, pc.tiles_x, &rect[0], &rect[2]) ||
+      !TileSpan(v, extent_y, pc.tiles_y, &rect[1], &rect[3])) {
     return Cull(g, out);
   }
   float colour[3];
@@ -103,6 +107,8 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
   out->mean_y[g] = v;
   out->depth[g] = t[2];
   out->radius[g] = radius;
+  out->extent_x[g] = extent_x;
+  out->extent_y[g] = extent_y;
   out->conic_a[g] = c * inv_det;
   out->conic_b[g] = -b * inv_det;
   out->conic_c[g] = a * inv_det;

@@ -10,9 +10,15 @@
 //   +-1.3 tan(fov / 2);
 // - the 2D covariance gets 0.3 px^2 added on its diagonal, culled if its determinant is <= 0;
 // - radius = ceil(3 sqrt(largest eigenvalue)), the eigenvalue computed as the reference does;
+//   a pixel is evaluated only if its centre is within the radius of the mean along x and y;
 // - colour = SH + 0.5 in the direction from the camera centre, clamped at 0.
 // Also culled (radius 0): Gaussians with any non-finite value, opacity below 1/255 (they
-// can never reach the minimum alpha) and splats whose square misses every pixel centre.
+// can never reach the minimum alpha) and splats whose extent misses every pixel centre.
+//
+// The extent only saves work: alpha >= 1/255 needs d^T conic d <= k^2 = 2 ln(255 opacity),
+// an ellipse whose bounding box has half extents k sqrt(cov_xx), k sqrt(cov_yy). The extent is
+// that box, with k^2 widened by 0.05 (far beyond float rounding), within the radius square;
+// pixels outside it could only be skipped.
 #ifndef M4D_RENDER_SPLAT_PROJECTION_H_
 #define M4D_RENDER_SPLAT_PROJECTION_H_
 

@@ -81,9 +81,16 @@ void Rasterize(const float* error_image, RenderContext* ctx) {
   ctx->final_transmittance.resize(pixels);
   ctx->last_contributor.resize(pixels);
   const bool weights = ctx->settings.blend_weights || error_image;
-  ctx->entry_weights.resize(weights ? 2 * ctx->bins.entries.size() : 0);
-  ctx->tile_buffers.resize(static_cast<size_t>(ctx->pool->size()));
-  for (TileSplatBuffer& b : ctx->tile_buffers) b.Reserve(ctx->bins.max_tile_entries);
+  ctx->slot_weights.resize(weights ? 2 * ctx->bins.entries.size() : 0);
+  const size_t workers = static_cast<size_t>(ctx->pool->size());
+  ctx->tile_buffers.resize(workers);
+  ctx->tile_accumulators.resize(workers);
+  for (size_t w = 0; w < workers; ++w) {
+    ctx->tile_buffers[w].Reserve(ctx->bins.max_tile_entries);
+    if (weights && ctx->tile_accumulators[w].size() < 2 * ctx->bins.max_tile_entries) {
+      ctx->tile_accumulators[w].resize(2 * ctx->bins.max_tile_entries);
+    }
+  }
 
   TileTarget target;
   target.width = ctx->camera.width;
@@ -93,15 +100,16 @@ void Rasterize(const float* error_image, RenderContext* ctx) {
   target.alpha = ctx->alpha.data();
   target.final_transmittance = ctx->final_transmittance.data();
   target.last_contributor = ctx->last_contributor.data();
-  target.entry_weights = weights ? ctx->entry_weights.data() : nullptr;
+  target.slot_weights = weights ? ctx->slot_weights.data() : nullptr;
   target.error_image = error_image;
   const size_t tiles = static_cast<size_t>(ctx->bins.tiles_x) * ctx->bins.tiles_y;
   ctx->pool->Run(tiles, [&](size_t tile, int worker) {
-    RasterizeTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker]);
+    RasterizeTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker],
+                  ctx->tile_accumulators[worker].data());
   });
 }
 
-// Sums each Gaussian's entry weights over its tiles, in a fixed order.
+// Sums each Gaussian's weights over its tiles, in a fixed order.
 void ReduceBlendWeights(bool blend_weights, bool error_weights, RenderContext* ctx) {
   const size_t n = ctx->gaussian_count;
   ctx->blend_weight.assign(blend_weights ? n : 0, 0.0f);
@@ -111,9 +119,9 @@ void ReduceBlendWeights(bool blend_weights, bool error_weights, RenderContext* c
     const TileBins& bins = ctx->bins;
     for (size_t g = begin; g < end; ++g) {
       float w = 0.0f, e = 0.0f;
-      for (uint32_t k = bins.gaussian_start[g]; k < bins.gaussian_start[g + 1]; ++k) {
-        w += ctx->entry_weights[2 * size_t{bins.entry_of[k]}];
-        e += ctx->entry_weights[2 * size_t{bins.entry_of[k]} + 1];
+      for (size_t k = bins.gaussian_start[g]; k < bins.gaussian_start[g + 1]; ++k) {
+        w += ctx->slot_weights[2 * k];
+        e += ctx->slot_weights[2 * k + 1];
       }
       if (blend_weights) ctx->blend_weight[g] = w;
       if (error_weights) ctx->error_weight[g] = e;

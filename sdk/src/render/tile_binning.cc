@@ -83,7 +83,7 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
   }
   bins->tile_start[tiles] = sum;
   bins->entries.resize(sum);
-  bins->entry_of.resize(sum);
+  bins->entry_slot.resize(sum);
   pool->Run(chunks, [&](size_t c, int) {
     uint32_t* cursor = &bins->chunk_cursor[c * tiles];
     size_t begin, end;
@@ -94,7 +94,7 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
       ForEachTile(splats, g, tiles_x, [&](size_t t) {
         const uint32_t pos = cursor[t]++;
         bins->entries[pos] = g;
-        bins->entry_of[slot++] = pos;
+        bins->entry_slot[pos] = slot++;
       });
     }
   });

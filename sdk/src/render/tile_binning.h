@@ -24,10 +24,12 @@ struct TileBins {
   // indices, front to back.
   std::vector<uint32_t> tile_start;
   std::vector<uint32_t> entries;
-  // The entry positions of Gaussian g, one per tile of its rectangle in row-major order, are
-  // entry_of[gaussian_start[g] .. gaussian_start[g + 1]).
+  // Gaussian g's entries, one per tile of its rectangle in row-major order, have the slots
+  // gaussian_start[g] .. gaussian_start[g + 1]; entry_slot maps an entry to its slot.
+  // Per-entry results are stored by slot, so that summing them per Gaussian reads memory
+  // in order.
   std::vector<uint32_t> gaussian_start;
-  std::vector<uint32_t> entry_of;
+  std::vector<uint32_t> entry_slot;
   size_t max_tile_entries = 0;
 
   // Scratch reused between renders.

@@ -45,10 +45,10 @@ void RasterizeGroup(const TileSplats& s, int x0, int y, const TileTarget& target
 }  // namespace
 
 void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
-                   const TileTarget& target, TileSplatBuffer* buffer) {
+                   const TileTarget& target, TileSplatBuffer* buffer, float* accumulator) {
   const uint32_t begin = bins.tile_start[tile], end = bins.tile_start[tile + 1];
   const TileSplats& s = buffer->Gather(splats, bins.entries.data() + begin, end - begin);
-  float* entry_weights = target.entry_weights ? target.entry_weights + 2 * size_t{begin} : nullptr;
+  float* entry_weights = target.slot_weights ? accumulator : nullptr;
   if (entry_weights) std::fill(entry_weights, entry_weights + 2 * size_t{end - begin}, 0.0f);
   const int tx = static_cast<int>(tile % bins.tiles_x), ty = static_cast<int>(tile / bins.tiles_x);
   const int x_end = std::min(target.width, (tx + 1) * kTileSize);
@@ -61,6 +61,12 @@ void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t t
         RasterizeGroup<false>(s, x0, y, target, nullptr);
       }
     }
+  }
+  if (!entry_weights) return;
+  for (uint32_t j = 0; j < end - begin; ++j) {
+    float* slot = target.slot_weights + 2 * size_t{bins.entry_slot[begin + j]};
+    slot[0] = entry_weights[2 * j];
+    slot[1] = entry_weights[2 * j + 1];
   }
 }
 

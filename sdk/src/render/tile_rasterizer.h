@@ -1,6 +1,7 @@
 // Forward blending of one tile: every pixel group of the tile walks the tile's splats front
 // to back (pixel_group_blend.h) and writes its colour, alpha, final transmittance and last
-// contributor; optionally each entry's blend weight and error-weighted blend weight.
+// contributor; optionally each entry's blend weight and error-weighted blend weight, by slot
+// (tile_binning.h).
 #ifndef M4D_RENDER_TILE_RASTERIZER_H_
 #define M4D_RENDER_TILE_RASTERIZER_H_
 
@@ -20,14 +21,16 @@ struct TileTarget {
   float* alpha = nullptr;
   float* final_transmittance = nullptr;
   uint32_t* last_contributor = nullptr;
-  // Optional: 2 floats per tile entry (sum of alpha T, sum of alpha T e), and the error image e
+  // Optional: 2 floats per slot (sum of alpha T, sum of alpha T e), and the error image e
   // (width * height, or null for zero).
-  float* entry_weights = nullptr;
+  float* slot_weights = nullptr;
   const float* error_image = nullptr;
 };
 
+// accumulator: per-worker scratch of at least 2 * bins.max_tile_entries floats, used when
+// target.slot_weights is set.
 void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
-                   const TileTarget& target, TileSplatBuffer* buffer);
+                   const TileTarget& target, TileSplatBuffer* buffer, float* accumulator);
 
 }  // namespace m4d
 

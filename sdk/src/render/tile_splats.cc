@@ -19,29 +19,31 @@ const TileSplats& TileSplatBuffer::Gather(const ProjectedSplats& splats, const u
     const uint32_t g = entries[k];
     field[0][k] = splats.mean_x[g];
     field[1][k] = splats.mean_y[g];
-    field[2][k] = splats.radius[g];
-    field[3][k] = splats.conic_a[g];
-    field[4][k] = splats.conic_b[g];
-    field[5][k] = splats.conic_c[g];
-    field[6][k] = splats.opacity[g];
-    field[7][k] = splats.color[0][g];
-    field[8][k] = splats.color[1][g];
-    field[9][k] = splats.color[2][g];
+    field[2][k] = splats.extent_x[g];
+    field[3][k] = splats.extent_y[g];
+    field[4][k] = splats.conic_a[g];
+    field[5][k] = splats.conic_b[g];
+    field[6][k] = splats.conic_c[g];
+    field[7][k] = splats.opacity[g];
+    field[8][k] = splats.color[0][g];
+    field[9][k] = splats.color[1][g];
+    field[10][k] = splats.color[2][g];
   }
   const size_t padded = (n + kLanes - 1) / kLanes * kLanes;
   for (size_t k = n; k < padded; ++k) {
     for (int f = 0; f < kFields; ++f) field[f][k] = 0.0f;
-    field[2][k] = -1.0f;
+    field[2][k] = field[3][k] = -1.0f;
   }
   view_.count = padded;
   view_.mean_x = field[0];
   view_.mean_y = field[1];
-  view_.radius = field[2];
-  view_.conic_a = field[3];
-  view_.conic_b = field[4];
-  view_.conic_c = field[5];
-  view_.opacity = field[6];
-  for (int c = 0; c < 3; ++c) view_.color[c] = field[7 + c];
+  view_.extent_x = field[2];
+  view_.extent_y = field[3];
+  view_.conic_a = field[4];
+  view_.conic_b = field[5];
+  view_.conic_c = field[6];
+  view_.opacity = field[7];
+  for (int c = 0; c < 3; ++c) view_.color[c] = field[8 + c];
   return view_;
 }
 

@@ -1,6 +1,6 @@
 // TileSplats: the splats of one tile, front to back, gathered into contiguous arrays so that
 // eight of them can be tested against a pixel group at once. Padded to a multiple of kLanes
-// with entries whose radius is negative, which never touch a pixel.
+// with entries whose extent is negative, which never touch a pixel.
 #ifndef M4D_RENDER_TILE_SPLATS_H_
 #define M4D_RENDER_TILE_SPLATS_H_
 
@@ -16,7 +16,8 @@ struct TileSplats {
   size_t count = 0;  // padded
   const float* mean_x = nullptr;
   const float* mean_y = nullptr;
-  const float* radius = nullptr;
+  const float* extent_x = nullptr;
+  const float* extent_y = nullptr;
   const float* conic_a = nullptr;
   const float* conic_b = nullptr;
   const float* conic_c = nullptr;
@@ -33,7 +34,7 @@ class TileSplatBuffer {
   const TileSplats& Gather(const ProjectedSplats& splats, const uint32_t* entries, size_t n);
 
  private:
-  static constexpr int kFields = 10;
+  static constexpr int kFields = 11;
   size_t capacity_ = 0;  // per field, a multiple of kLanes
   std::vector<float> storage_;
   TileSplats view_;
