@@ -52,24 +52,23 @@ void ConicToCovariance(const float cov[3], const float dl_dconic[3], float dl_dc
 }
 
 // dL/d(camera-space mean) from dL/d(J W) (2x3) and dL/d(u, v).
-void BackpropagateJacobian(const ProjectionConstants& pc, const float t[3], const float dl_djw[6],
-                           const float dl_dmean[2], float dl_dt[3]) {
+void BackpropagateJacobian(const ProjectionConstants& pc, const SplatGeometry& geo,
+                           const float dl_djw[6], const float dl_dmean[2], float dl_dt[3]) {
   const float* w = pc.rotation;
-  const float z = t[2], inv_z = 1.0f / z, inv_z2 = inv_z * inv_z;
+  const float* t = geo.view;
+  const float inv_z = 1.0f / t[2], inv_z2 = inv_z * inv_z;
   const float dj00 = Dot3(dl_djw, w), dj02 = Dot3(dl_djw, w + 6);
   const float dj11 = Dot3(dl_djw + 3, w + 3), dj12 = Dot3(dl_djw + 3, w + 6);
   const float raw_x = t[0] * inv_z, raw_y = t[1] * inv_z;
-  const float xz = ClampTo(raw_x, pc.limit_x[0], pc.limit_x[1]);
-  const float yz = ClampTo(raw_y, pc.limit_y[0], pc.limit_y[1]);
-  const bool free_x = xz == raw_x, free_y = yz == raw_y;
-  // J02 = -fx xz / z with xz = t.x / z when not clamped, a constant when clamped.
-  const float dj02_dxz = -pc.fx * inv_z, dj12_dyz = -pc.fy * inv_z;
-  dl_dt[0] = free_x ? dj02 * dj02_dxz * inv_z : 0.0f;
-  dl_dt[1] = free_y ? dj12 * dj12_dyz * inv_z : 0.0f;
-  dl_dt[2] = -dj00 * pc.fx * inv_z2 - dj11 * pc.fy * inv_z2 + dj02 * pc.fx * xz * inv_z2 +
-             dj12 * pc.fy * yz * inv_z2;
-  if (free_x) dl_dt[2] += dj02 * dj02_dxz * (-raw_x * inv_z);
-  if (free_y) dl_dt[2] += dj12 * dj12_dyz * (-raw_y * inv_z);
+  // J02 = -fx xz / z with xz = t.x / z, or a constant limit when clamped; likewise J12.
+  const float xz = geo.clamped_x ? (raw_x < pc.limit_x[0] ? pc.limit_x[0] : pc.limit_x[1]) : raw_x;
+  const float yz = geo.clamped_y ? (raw_y < pc.limit_y[0] ? pc.limit_y[0] : pc.limit_y[1]) : raw_y;
+  const float dl_dxz = geo.clamped_x ? 0.0f : -dj02 * pc.fx * inv_z;
+  const float dl_dyz = geo.clamped_y ? 0.0f : -dj12 * pc.fy * inv_z;
+  dl_dt[0] = dl_dxz * inv_z;
+  dl_dt[1] = dl_dyz * inv_z;
+  dl_dt[2] = (-dj00 * pc.fx - dj11 * pc.fy + dj02 * pc.fx * xz + dj12 * pc.fy * yz) * inv_z2 -
+             (dl_dxz * raw_x + dl_dyz * raw_y) * inv_z;
   // u = fx t.x / z + cx, v = fy t.y / z + cy.
   dl_dt[0] += dl_dmean[0] * pc.fx * inv_z;
   dl_dt[1] += dl_dmean[1] * pc.fy * inv_z;
@@ -115,24 +114,16 @@ void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerV
   const size_t sh_stride = 3 * static_cast<size_t>(ShCoefficients(layer.sh_degree));
   BackpropagateColour(pc, layer, degree, i, dl_dcolor, out.sh + sh_stride * i, dl_dp);
 
-  // Recompute the forward geometry.
-  float t[3];
-  for (int a = 0; a < 3; ++a) t[a] = Dot3(pc.rotation + 3 * a, p) + pc.translation[a];
-  const float q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  const float unit_q[4] = {q[0] / q_norm, q[1] / q_norm, q[2] / q_norm, q[3] / q_norm};
-  const float scale[3] = {std::exp(log_scale[0]), std::exp(log_scale[1]), std::exp(log_scale[2])};
-  float rot[9], cov3[9], jw[6], cov2[3];
-  QuaternionToRotation(unit_q, rot);
-  Covariance3D(rot, scale, cov3);
-  ProjectionJacobian(t, pc.fx, pc.fy, pc.limit_x, pc.limit_y, pc.rotation, jw);
-  ProjectCovariance(jw, cov3, &cov2[0], &cov2[1], &cov2[2]);
-  cov2[0] += kCovarianceDilation;
-  cov2[2] += kCovarianceDilation;
+  // The forward geometry (visible Gaussians always have one).
+  SplatGeometry geo;
+  ComputeSplatGeometry(pc, p, log_scale, q, &geo);
 
   // cov2 = (J W) cov3 (J W)^T.
   float dl_dcov2[3];
-  ConicToCovariance(cov2, grad.conic, dl_dcov2);
-  const float *t0 = jw, *t1 = jw + 3;
+  ConicToCovariance(geo.cov2, grad.conic, dl_dcov2);
+  const float *t0 = geo.jw, *t1 = geo.jw + 3;
+  const float* c = geo.cov3;
+  const float cov3[9] = {c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5]};
   float s_t0[3], s_t1[3];  // cov3 T0^T, cov3 T1^T
   for (int a = 0; a < 3; ++a) {
     s_t0[a] = Dot3(cov3 + 3 * a, t0);
@@ -144,7 +135,7 @@ void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerV
     dl_djw[3 + a] = dl_dcov2[1] * s_t0[a] + 2 * dl_dcov2[2] * s_t1[a];
   }
   float dl_dt[3];
-  BackpropagateJacobian(pc, t, dl_djw, grad.mean, dl_dt);
+  BackpropagateJacobian(pc, geo, dl_djw, grad.mean, dl_dt);
   for (int a = 0; a < 3; ++a) {
     dl_dp[a] +=
         pc.rotation[a] * dl_dt[0] + pc.rotation[3 + a] * dl_dt[1] + pc.rotation[6 + a] * dl_dt[2];
@@ -159,6 +150,8 @@ void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerV
                          2 * dl_dcov2[2] * t1[a] * t1[b];
     }
   }
+  const float* rot = geo.rotation;
+  const float* scale = geo.scale;
   float dl_drot[9];
   for (int b = 0; b < 3; ++b) {
     float dl_dscale = 0;

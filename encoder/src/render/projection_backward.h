@@ -11,7 +11,7 @@
 #include <cstdint>
 
 #include "render/gaussian_layer_view.h"
-#include "render/splat_projection.h"
+#include "render/projection_constants.h"
 
 namespace m4d {
 

@@ -5,8 +5,8 @@
 #include "render/lane_sums.h"
 #include "render/lanes.h"
 #include "render/pixel_group_blend.h"
+#include "render/projection_constants.h"
 #include "render/splat_alpha.h"
-#include "render/splat_projection.h"
 
 namespace m4d {
 
@@ -14,19 +14,8 @@ void BlendRecord::Reserve(size_t max_splats) {
   if (splat_.size() >= max_splats && !splat_.empty()) return;
   const size_t n = std::max<size_t>(max_splats, 1);
   splat_.resize(n);
-  alpha_.resize(kLanes * n);
-  transmittance_.resize(kLanes * n);
+  lanes_.resize(2 * kLanes * n);
 }
-
-void BlendRecord::Push(uint32_t splat, const float* alpha, const float* transmittance) {
-  splat_[size_] = splat;
-  std::copy(alpha, alpha + kLanes, &alpha_[kLanes * size_]);
-  std::copy(transmittance, transmittance + kLanes, &transmittance_[kLanes * size_]);
-  ++size_;
-}
-
-const float* BlendRecord::alpha(size_t h) const { return &alpha_[kLanes * h]; }
-const float* BlendRecord::transmittance(size_t h) const { return &transmittance_[kLanes * h]; }
 
 namespace {
 
@@ -118,11 +107,8 @@ bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size
     for (int x0 = tx * kTileSize; x0 < x_end; x0 += kLanes) {
       PixelGroup group = StartPixelGroup(x0, y, target.width);
       record->Clear();
-      BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t) {
-        float a[kLanes], tr[kLanes];
-        StoreLanes(alpha, a);
-        StoreLanes(t, tr);
-        record->Push(static_cast<uint32_t>(j), a, tr);
+      BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t, bool blended) {
+        record->Push(static_cast<uint32_t>(j), &alpha, &t, blended);
       });
       matches = matches && MatchesForward(target, group);
       WalkBack(s, group, *record, LoadGroupLoss(target, group), target.background, accumulator);

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "render/projected_splats.h"
@@ -40,18 +41,27 @@ enum EntryGradient {
 // Per-worker storage, reserved before a parallel section so that workers never allocate.
 class BlendRecord {
  public:
+  static constexpr size_t kLaneBytes = 8 * sizeof(float);
+
   void Reserve(size_t max_splats);
   void Clear() { size_ = 0; }
   size_t size() const { return size_; }
-  void Push(uint32_t splat, const float* alpha, const float* transmittance);
+  // alpha and transmittance: 8 lanes each. Kept only if `keep` (written either way, so
+  // that the caller needs no branch).
+  void Push(uint32_t splat, const void* alpha, const void* transmittance, bool keep) {
+    splat_[size_] = splat;
+    std::memcpy(&lanes_[16 * size_], alpha, kLaneBytes);
+    std::memcpy(&lanes_[16 * size_ + 8], transmittance, kLaneBytes);
+    size_ += keep ? 1 : 0;
+  }
   uint32_t splat(size_t h) const { return splat_[h]; }
-  const float* alpha(size_t h) const;
-  const float* transmittance(size_t h) const;
+  const float* alpha(size_t h) const { return &lanes_[16 * h]; }
+  const float* transmittance(size_t h) const { return &lanes_[16 * h + 8]; }
 
  private:
   size_t size_ = 0;
   std::vector<uint32_t> splat_;
-  std::vector<float> alpha_, transmittance_;  // 8 lanes per splat
+  std::vector<float> lanes_;  // per splat: 8 alphas, 8 transmittances
 };
 
 struct TileGradientTarget {

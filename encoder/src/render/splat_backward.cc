@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <new>
 
-#include "render/splat_projection.h"
+#include "render/projection_constants.h"
 
 namespace m4d {
 namespace {

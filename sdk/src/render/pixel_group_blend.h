@@ -43,14 +43,16 @@ inline PixelGroup StartPixelGroup(int x0, int y, int width) {
 }
 
 // Walks the tile's splats front to back, blending into the group until every lane is done.
-// For each splat j that blends into at least one lane it calls
-//   on_blend(j, alpha, transmittance)
-// with alpha zero in the lanes it does not blend into, and the transmittance in front of it.
+// For each candidate splat j (one whose extent reaches the group) it calls
+//   on_blend(j, alpha, transmittance, blended)
+// with alpha zero in the lanes it does not blend into, the transmittance in front of it,
+// and blended false when that is every lane. The update itself has no data-dependent
+// branches (they would mispredict), and doneness is checked once per eight splats.
 template <typename OnBlend>
 inline void BlendPixelGroup(const TileSplats& s, PixelGroup* g, OnBlend&& on_blend) {
   const float first_x = g->px[0], last_x = g->px[kLanes - 1];
   for (size_t base = 0; base < s.count; base += kLanes) {
-    // Splats whose square reaches this row and some lane of the group; conservative with
+    // Splats whose extent reaches this row and some lane of the group; conservative with
     // respect to the per-lane test below (same subtractions, monotone rounding).
     const Lanes ex = LoadLanes(s.extent_x + base), ey = LoadLanes(s.extent_y + base);
     const Lanes dy8 = LoadLanes(s.mean_y + base) - g->py;
@@ -68,18 +70,15 @@ inline void BlendPixelGroup(const TileSplats& s, PixelGroup* g, OnBlend&& on_ble
       const Lanes alpha = raw < kMaxAlpha ? raw : Broadcast(kMaxAlpha);
       LaneMask blend =
           (dx <= extent) & (dx >= -extent) & (power <= 0.0f) & (alpha >= kMinAlpha) & ~g->done;
-      if (!AnyLane(blend)) continue;
       const Lanes next_t = g->transmittance * (1.0f - alpha);
       const LaneMask stop = blend & (next_t < kMinTransmittance);
       g->done |= stop;
       blend &= ~stop;
-      if (AnyLane(blend)) {
-        on_blend(j, blend ? alpha : Lanes{}, g->transmittance);
-        g->transmittance = blend ? next_t : g->transmittance;
-        g->last = blend ? static_cast<int32_t>(j + 1) : g->last;
-      }
-      if (AllLanes(g->done)) return;
+      on_blend(j, blend ? alpha : Lanes{}, g->transmittance, AnyLane(blend));
+      g->transmittance = blend ? next_t : g->transmittance;
+      g->last = blend ? static_cast<int32_t>(j + 1) : g->last;
     }
+    if (AllLanes(g->done)) return;
   }
 }
 

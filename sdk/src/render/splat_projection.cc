@@ -59,30 +59,14 @@ bool SplatColour(const ProjectionConstants& pc, const GaussianLayerView& layer, 
 
 void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree, size_t i,
                 size_t g, ProjectedSplats* out) {
-  const float* p = layer.positions + 3 * i;
-  const float* r = pc.rotation;
-  float t[3];
-  for (int a = 0; a < 3; ++a) {
-    t[a] = r[3 * a] * p[0] + r[3 * a + 1] * p[1] + r[3 * a + 2] * p[2] + pc.translation[a];
-  }
   const float opacity = 1.0f / (1.0f + std::exp(-layer.opacity_logits[i]));
-  const float* q = layer.rotations + 4 * i;
-  const float q_norm2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  const float* log_scale = layer.log_scales + 3 * i;
-  const float scale[3] = {std::exp(log_scale[0]), std::exp(log_scale[1]), std::exp(log_scale[2])};
-  if (!(t[2] > pc.near_plane) || !Finite3(t) || !(opacity >= kMinAlpha) || !(q_norm2 > 0.0f) ||
-      !std::isfinite(q_norm2) || !Finite3(scale)) {
+  SplatGeometry geo;
+  if (!(opacity >= kMinAlpha) ||
+      !ComputeSplatGeometry(pc, layer.positions + 3 * i, layer.log_scales + 3 * i,
+                            layer.rotations + 4 * i, &geo)) {
     return Cull(g, out);
   }
-  const float inv_q = 1.0f / std::sqrt(q_norm2);
-  const float unit_q[4] = {q[0] * inv_q, q[1] * inv_q, q[2] * inv_q, q[3] * inv_q};
-  float rot[9], cov3[9], jw[6], a, b, c;
-  QuaternionToRotation(unit_q, rot);
-  Covariance3D(rot, scale, cov3);
-  ProjectionJacobian(t, pc.fx, pc.fy, pc.limit_x, pc.limit_y, pc.rotation, jw);
-  ProjectCovariance(jw, cov3, &a, &b, &c);
-  a += kCovarianceDilation;
-  c += kCovarianceDilation;
+  const float a = geo.cov2[0], b = geo.cov2[1], c = geo.cov2[2];
   const float det = a * c - b * b;
   if (!(det > 0.0f) || !std::isfinite(det)) return Cull(g, out);
   const float mid = 0.5f * (a + c);
@@ -91,9 +75,9 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
   const float k2 = 2.0f * std::log(255.0f * opacity) + 0.05f;
   const float extent_x = std::min(radius, std::sqrt(k2 * a));
   const float extent_y = std::min(radius, std::sqrt(k2 * c));
-  const float inv_z = 1.0f / t[2];
-  const float u = pc.fx * t[0] * inv_z + pc.cx;
-  const float v = pc.fy * t[1] * inv_z + pc.cy;
+  const float inv_z = 1.0f / geo.view[2];
+  const float u = pc.fx * geo.view[0] * inv_z + pc.cx;
+  const float v = pc.fy * geo.view[1] * inv_z + pc.cy;
   uint16_t rect[4];
   if (!std::isfinite(radius) || !TileSpan(u, extent_x, pc.tiles_x, &rect[0], &rect[2]) ||
       !TileSpan(v, extent_y, pc.tiles_y, &rect[1], &rect[3])) {
@@ -105,7 +89,7 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
   const float inv_det = 1.0f / det;
   out->mean_x[g] = u;
   out->mean_y[g] = v;
-  out->depth[g] = t[2];
+  out->depth[g] = geo.view[2];
   out->radius[g] = radius;
   out->extent_x[g] = extent_x;
   out->extent_y[g] = extent_y;
@@ -119,28 +103,6 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
 }
 
 }  // namespace
-
-ProjectionConstants MakeProjectionConstants(const Camera& camera) {
-  ProjectionConstants pc;
-  std::copy(camera.rotation, camera.rotation + 9, pc.rotation);
-  std::copy(camera.translation, camera.translation + 3, pc.translation);
-  CameraCentre(camera, pc.centre);
-  pc.fx = camera.fx;
-  pc.fy = camera.fy;
-  pc.cx = camera.cx;
-  pc.cy = camera.cy;
-  pc.near_plane = camera.near_plane;
-  const float w = static_cast<float>(camera.width), h = static_cast<float>(camera.height);
-  pc.limit_x[0] = (-camera.cx - kFrustumMargin * w) / camera.fx;
-  pc.limit_x[1] = (w - camera.cx + kFrustumMargin * w) / camera.fx;
-  pc.limit_y[0] = (-camera.cy - kFrustumMargin * h) / camera.fy;
-  pc.limit_y[1] = (h - camera.cy + kFrustumMargin * h) / camera.fy;
-  pc.width = camera.width;
-  pc.height = camera.height;
-  pc.tiles_x = (camera.width + kTileSize - 1) / kTileSize;
-  pc.tiles_y = (camera.height + kTileSize - 1) / kTileSize;
-  return pc;
-}
 
 void ProjectSplats(const ProjectionConstants& pc, const GaussianLayerView& layer, int sh_degree,
                    size_t begin, size_t end, size_t offset, ProjectedSplats* out) {

@@ -1,14 +1,8 @@
-// Preprocessing of the rasterizer: per Gaussian, activation of the coded values, EWA
-// projection to a 2D splat (mean, conic, radius, covered tiles), SH colour and culling.
-//
-// Conventions of the reference 3DGS rasterizer, generalised to a principal point:
-// - scale = exp(log_scale), opacity = sigmoid(logit), rotation = normalised (w, x, y, z);
-// - culled when the camera-space depth is <= near_plane;
-// - for the Jacobian, X/Z is clamped to the image's extent in normalised coordinates,
-//   [-cx / fx, (width - cx) / fx], widened on each side by 0.3 of its half extent
-//   (0.15 width / fx), and likewise Y/Z; with cx = width / 2 this is the reference's
-//   +-1.3 tan(fov / 2);
-// - the 2D covariance gets 0.3 px^2 added on its diagonal, culled if its determinant is <= 0;
+// Preprocessing of the rasterizer: per Gaussian, the EWA projection to a 2D splat (mean,
+// conic, radius, extent, covered tiles), its opacity and SH colour, and culling. Conventions
+// of the reference 3DGS rasterizer (see also splat_geometry.h, projection_constants.h):
+// - opacity = sigmoid(logit); culled when the camera-space depth is <= the near plane;
+// - the dilated 2D covariance is culled if its determinant is <= 0; conic = its inverse;
 // - radius = ceil(3 sqrt(largest eigenvalue)), the eigenvalue computed as the reference does;
 //   a pixel is evaluated only if its centre is within the radius of the mean along x and y;
 // - colour = SH + 0.5 in the direction from the camera centre, clamped at 0.
@@ -24,29 +18,11 @@
 
 #include <cstddef>
 
-#include "render/camera.h"
 #include "render/gaussian_layer_view.h"
 #include "render/projected_splats.h"
+#include "render/projection_constants.h"
 
 namespace m4d {
-
-constexpr int kTileSize = 16;
-constexpr float kCovarianceDilation = 0.3f;
-constexpr float kFrustumMargin = 0.15f;  // of the image extent, per side (see above)
-
-// What the projection needs from the camera, computed once per render.
-struct ProjectionConstants {
-  float rotation[9];
-  float translation[3];
-  float centre[3];
-  float fx, fy, cx, cy;
-  float near_plane;
-  float limit_x[2], limit_y[2];  // clamp range of X/Z and Y/Z
-  int width, height;
-  int tiles_x, tiles_y;
-};
-
-ProjectionConstants MakeProjectionConstants(const Camera& camera);
 
 // Projects Gaussians [begin, end) of `layer`, evaluating SH up to `sh_degree` (at most the
 // layer's), into out at global index offset + i.

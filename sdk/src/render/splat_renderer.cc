@@ -4,6 +4,7 @@
 #include <cmath>
 #include <new>
 
+#include "render/projection_constants.h"
 #include "render/splat_projection.h"
 #include "render/tile_rasterizer.h"
 

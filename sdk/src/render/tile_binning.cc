@@ -8,10 +8,10 @@
 namespace m4d {
 namespace {
 
-// Calls visit(tile) for each tile of Gaussian g's rectangle, row-major.
+// Calls visit(tile) for each tile of a rectangle (first column, row, last column, row),
+// row-major.
 template <typename Visit>
-void ForEachTile(const ProjectedSplats& splats, uint32_t g, int tiles_x, Visit&& visit) {
-  const uint16_t* rect = &splats.tile_rect[4 * static_cast<size_t>(g)];
+void ForEachTile(const uint16_t* rect, int tiles_x, Visit&& visit) {
   for (int ty = rect[1]; ty <= rect[3]; ++ty) {
     for (int tx = rect[0]; tx <= rect[2]; ++tx) visit(static_cast<size_t>(ty) * tiles_x + tx);
   }
@@ -57,6 +57,7 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
       1, std::min({static_cast<size_t>(pool->size()), (size_t{1} << 22) / tiles, visible / 256}));
   const size_t per_chunk = (visible + chunks - 1) / chunks;
   bins->chunk_cursor.assign(chunks * tiles, 0);
+  bins->sorted_rect.resize(4 * visible);
   auto chunk_range = [&](size_t c, size_t* begin, size_t* end) {
     *begin = std::min(visible, c * per_chunk);
     *end = std::min(visible, *begin + per_chunk);
@@ -65,8 +66,15 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
     uint32_t* cursor = &bins->chunk_cursor[c * tiles];
     size_t begin, end;
     chunk_range(c, &begin, &end);
+    // Gather the rectangles in depth order once: the counting and filling then read them
+    // sequentially rather than at random.
+    uint16_t* rects = bins->sorted_rect.data();
     for (size_t k = begin; k < end; ++k) {
-      ForEachTile(splats, bins->order[k], tiles_x, [&](size_t t) { ++cursor[t]; });
+      std::memcpy(rects + 4 * k, &splats.tile_rect[4 * size_t{bins->order[k]}],
+                  4 * sizeof(uint16_t));
+    }
+    for (size_t k = begin; k < end; ++k) {
+      ForEachTile(rects + 4 * k, tiles_x, [&](size_t t) { ++cursor[t]; });
     }
   });
   bins->tile_start.resize(tiles + 1);
@@ -91,7 +99,7 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = bins->order[k];
       uint32_t slot = bins->gaussian_start[g];
-      ForEachTile(splats, g, tiles_x, [&](size_t t) {
+      ForEachTile(&bins->sorted_rect[4 * k], tiles_x, [&](size_t t) {
         const uint32_t pos = cursor[t]++;
         bins->entries[pos] = g;
         bins->entry_slot[pos] = slot++;

@@ -34,6 +34,7 @@ struct TileBins {
 
   // Scratch reused between renders.
   std::vector<uint32_t> keys, order, key_scratch, order_scratch;
+  std::vector<uint16_t> sorted_rect;   // tile rectangles in depth order
   std::vector<uint32_t> chunk_cursor;  // per chunk and tile
 };
 

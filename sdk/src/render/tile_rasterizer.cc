@@ -4,7 +4,7 @@
 
 #include "render/lanes.h"
 #include "render/pixel_group_blend.h"
-#include "render/splat_projection.h"
+#include "render/projection_constants.h"
 
 namespace m4d {
 namespace {
@@ -24,7 +24,8 @@ void RasterizeGroup(const TileSplats& s, int x0, int y, const TileTarget& target
                           ? LoadRow(target.error_image + row, x0, target.width)
                           : Lanes{};
   Lanes color[3] = {};
-  BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t) {
+  BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t, bool) {
+    // Lanes that do not blend have weight zero and add exact zeros.
     const Lanes w = alpha * t;
     for (int c = 0; c < 3; ++c) color[c] += s.color[c][j] * w;
     if (kWeights) {
