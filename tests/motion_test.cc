@@ -760,6 +760,16 @@ TEST(MotionApplicationTest, BitIdenticalToReference) {
       const GaussianSet input = Prefix(rc.set, count);
       GaussianSet expected = input;
       ReferenceApplyMotion(rc.config, rc.grid, rc.mlp, &expected);
+      // Every kernel this CPU runs, and the dispatcher, give the reference's bits.
+      for (MotionKernelKind kind : {MotionKernelKind::kBaseline, MotionKernelKind::kAvx512}) {
+        if (!MotionKernelSupported(kind)) continue;
+        GaussianSet other = input;
+        ApplyMotionWith(kind, rc.config, rc.grid, rc.mlp, &other);
+        ASSERT_TRUE(SameBits(other.positions, expected.positions))
+            << "kernel " << static_cast<int>(kind) << " trial " << trial << " count " << count;
+        ASSERT_TRUE(SameBits(other.rotations, expected.rotations))
+            << "kernel " << static_cast<int>(kind) << " trial " << trial << " count " << count;
+      }
       GaussianSet actual = input;
       ApplyMotion(rc.config, rc.grid, rc.mlp, &actual);
       ASSERT_TRUE(SameBits(actual.positions, expected.positions))
