@@ -5,7 +5,8 @@
 //   ApplyMotion:     100k Gaussians; arg 0: uniform in the box, in spatial (Morton) order as
 //                    Draco's kd-tree returns them (the most grid memory touched); arg 1: the
 //                    same in random order (worst case for the caches); arg 2: on a sphere
-//                    like the surface of a captured object, spatial order.
+//                    like the surface of a captured object, spatial order. Second arg: the
+//                    kernel build (0 baseline AVX2, 1 AVX-512).
 //   MotionFrame:     grid read and arg 0, as one inter frame does them.
 #include <benchmark/benchmark.h>
 
@@ -175,24 +176,28 @@ void BM_ReadMotionGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadMotionGrid)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", Min);
 
-// Every iteration moves a fresh copy of the set (the copy is not timed).
+// Every iteration moves a fresh copy of the set (the copy is not timed). Arg 1 is the kernel
+// (MotionKernelKind: 0 baseline, 1 AVX-512).
 void BM_ApplyMotion(benchmark::State& state) {
   const MotionData& data = Data();
   const GaussianSet& original = data.sets[state.range(0)];
+  const auto kind = static_cast<MotionKernelKind>(state.range(1));
+  if (!MotionKernelSupported(kind)) {
+    state.SkipWithError("kernel not supported by this build or CPU");
+    return;
+  }
   GaussianSet set = original;
   for (auto _ : state) {
     state.PauseTiming();
     set = original;
     state.ResumeTiming();
-    ApplyMotion(data.config, data.grid, data.mlp, &set);
+    ApplyMotionWith(kind, data.config, data.grid, data.mlp, &set);
     benchmark::DoNotOptimize(set.positions.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(kGaussians));
 }
 BENCHMARK(BM_ApplyMotion)
-    ->Arg(kUniformSpatial)
-    ->Arg(kUniformRandom)
-    ->Arg(kShellSpatial)
+    ->ArgsProduct({{kUniformSpatial, kUniformRandom, kShellSpatial}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->ComputeStatistics("min", Min);
 

@@ -22,7 +22,7 @@ TestStream SmallStream() {
 }
 
 TEST(Api, VersionAndErrorStrings) {
-  EXPECT_STREQ(m4d_version(), "0.1.0");
+  EXPECT_STREQ(m4d_version(), "0.2.0");
   std::set<std::string> seen;
   for (int code = 0; code >= -7; --code) {
     ASSERT_NE(m4d_error_string(code), nullptr);

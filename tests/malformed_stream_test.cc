@@ -137,8 +137,12 @@ TEST_F(MalformedStream, SequenceHeaderFields) {
   auto set = [](size_t offset, uint8_t value) {
     return [offset, value](std::vector<uint8_t>* p) { (*p)[offset] = value; };
   };
+  // Another major version, the previous and the next minor version.
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(0, 1))), M4D_ERR_UNSUPPORTED);
-  EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, 2))), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, M4D_BITSTREAM_VERSION_MINOR - 1))),
+            M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, M4D_BITSTREAM_VERSION_MINOR + 1))),
+            M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(2, 1))), M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(3, 4))), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket([](std::vector<uint8_t>* p) {

@@ -120,6 +120,38 @@ TEST(MotionGridTest, RoundTripPartialBricks) {
   }
 }
 
+// A decoder reads every frame's grid into the same MotionGrid and zeroes only the bricks that
+// were coded the frame before: the result must equal a fresh read, frame after frame.
+TEST(MotionGridTest, ReusedGridEqualsFreshRead) {
+  const GridConfig config = MakeConfig({2, 3}, {20, 33});
+  std::mt19937 rng(5);
+  MotionGrid reused;
+  for (int frame = 0; frame < 6; ++frame) {
+    // Content moves between bricks; frame 3 is all zero, frame 4 has every brick.
+    const FloatMotionGrid in =
+        SparseFloatGrid(config, &rng, [frame](int l, int bz, int by, int bx) {
+          return frame == 4 || (frame != 3 && (bz * 7 + by * 3 + bx + l + frame) % 5 == 0);
+        });
+    std::vector<uint8_t> payload;
+    ByteWriter writer(&payload);
+    ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+    MotionGrid fresh;
+    ASSERT_TRUE(ReadGrid(payload, config, &fresh).ok());
+    ASSERT_TRUE(ReadGrid(payload, config, &reused).ok());
+    for (int l = 0; l < config.num_levels; ++l) {
+      ASSERT_EQ(reused.values[l], fresh.values[l]) << "frame " << frame << " level " << l;
+      for (size_t i = 0; i < in.values[l].size(); ++i) {
+        ASSERT_EQ(fresh.values[l][i], Quantize(in.values[l][i], in.step[l]));
+      }
+    }
+    // A truncated payload fails and must not leave the reused grid inconsistent.
+    std::vector<uint8_t> cut(payload.begin(), payload.begin() + payload.size() / 2);
+    EXPECT_FALSE(ReadGrid(cut, config, &reused).ok());
+    ASSERT_TRUE(ReadGrid(payload, config, &reused).ok());
+    for (int l = 0; l < config.num_levels; ++l) ASSERT_EQ(reused.values[l], fresh.values[l]);
+  }
+}
+
 TEST(MotionGridTest, OnlyBricksWithContentAreFlagged) {
   const GridConfig config = MakeConfig({2}, {20});  // 3 bricks per axis, the last 4 wide
   std::mt19937 rng(2);
@@ -728,6 +760,16 @@ TEST(MotionApplicationTest, BitIdenticalToReference) {
       const GaussianSet input = Prefix(rc.set, count);
       GaussianSet expected = input;
       ReferenceApplyMotion(rc.config, rc.grid, rc.mlp, &expected);
+      // Every kernel this CPU runs, and the dispatcher, give the reference's bits.
+      for (MotionKernelKind kind : {MotionKernelKind::kBaseline, MotionKernelKind::kAvx512}) {
+        if (!MotionKernelSupported(kind)) continue;
+        GaussianSet other = input;
+        ApplyMotionWith(kind, rc.config, rc.grid, rc.mlp, &other);
+        ASSERT_TRUE(SameBits(other.positions, expected.positions))
+            << "kernel " << static_cast<int>(kind) << " trial " << trial << " count " << count;
+        ASSERT_TRUE(SameBits(other.rotations, expected.rotations))
+            << "kernel " << static_cast<int>(kind) << " trial " << trial << " count " << count;
+      }
       GaussianSet actual = input;
       ApplyMotion(rc.config, rc.grid, rc.mlp, &actual);
       ASSERT_TRUE(SameBits(actual.positions, expected.positions))

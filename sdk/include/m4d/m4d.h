@@ -43,7 +43,7 @@ extern "C" {
 #define M4D_VERSION_MINOR 1
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 1
+#define M4D_BITSTREAM_VERSION_MINOR 2
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0

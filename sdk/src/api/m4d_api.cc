@@ -47,7 +47,7 @@ bool ReservedZero(const M4dSettings* s) {
 
 extern "C" {
 
-const char* m4d_version(void) { return "0.1.0"; }
+const char* m4d_version(void) { return "0.2.0"; }
 
 const char* m4d_error_string(int code) {
   switch (code) {

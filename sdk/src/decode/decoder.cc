@@ -6,6 +6,7 @@
 #include "common/byte_reader.h"
 #include "common/crc32.h"
 #include "common/spec_limits.h"
+#include "decode/compensation_merge.h"
 #include "decode/motion_application.h"
 #include "entropy/symbol_block_reader.h"
 #include "layers/gaussian_set_reader.h"
@@ -38,29 +39,6 @@ Status RequireConsumed(const ByteReader& reader, const char* what) {
                           " bytes left after the payload's syntax");
   }
   return Status::Ok();
-}
-
-// Keeps the Gaussians whose flag is 0, in order (spec 6.4).
-template <typename T>
-void CompactRows(Buffer<T>* values, size_t width, const int32_t* removed, size_t count) {
-  size_t out = 0;
-  for (size_t i = 0; i < count; ++i) {
-    if (removed[i]) continue;
-    if (out != i) {
-      for (size_t k = 0; k < width; ++k) (*values)[out * width + k] = (*values)[i * width + k];
-    }
-    ++out;
-  }
-  values->resize(out * width);
-}
-
-void AppendSet(const GaussianSet& added, GaussianSet* set) {
-  set->positions.insert(set->positions.end(), added.positions.begin(), added.positions.end());
-  set->log_scales.insert(set->log_scales.end(), added.log_scales.begin(), added.log_scales.end());
-  set->rotations.insert(set->rotations.end(), added.rotations.begin(), added.rotations.end());
-  set->opacity_logits.insert(set->opacity_logits.end(), added.opacity_logits.begin(),
-                             added.opacity_logits.end());
-  set->sh.insert(set->sh.end(), added.sh.begin(), added.sh.end());
 }
 
 }  // namespace
@@ -276,15 +254,7 @@ Status Decoder::DecodeCompensation(const uint8_t* payload, size_t size) {
     return LimitError("COMPENSATION: dynamic set would exceed " + std::to_string(max));
   }
   GaussianSet* set = MutableDynamicSet();
-  if (num_removed > 0) {
-    const int32_t* flags = removed.data();
-    CompactRows(&set->positions, 3, flags, n);
-    CompactRows(&set->log_scales, 3, flags, n);
-    CompactRows(&set->rotations, 4, flags, n);
-    CompactRows(&set->opacity_logits, 1, flags, n);
-    CompactRows(&set->sh, static_cast<size_t>(set->sh_floats()), flags, n);
-  }
-  AppendSet(added, set);
+  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, set);
   return Status::Ok();
 }
 

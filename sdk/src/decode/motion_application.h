@@ -11,9 +11,20 @@
 
 namespace m4d {
 
-// Moves every Gaussian of *set in place (positions and rotations), as spec 6.3 says.
+// Builds of the motion kernel; every one gives bit-identical results.
+enum class MotionKernelKind { kBaseline, kAvx512 };
+
+// True when this build has the kernel and the CPU runs it.
+bool MotionKernelSupported(MotionKernelKind kind);
+
+// Moves every Gaussian of *set in place (positions and rotations), as spec 6.3 says, with the
+// fastest supported kernel.
 void ApplyMotion(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
                  GaussianSet* set);
+
+// The same with a given kernel, which must be supported (for tests and benchmarks).
+void ApplyMotionWith(MotionKernelKind kind, const GridConfig& config, const MotionGrid& grid,
+                     const MlpWeights& mlp, GaussianSet* set);
 
 }  // namespace m4d
 

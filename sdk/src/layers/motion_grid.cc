@@ -14,9 +14,41 @@ namespace {
 // Voxels of brick b along an axis of r voxels: kBrickSize, fewer for a partial last brick.
 int BrickExtent(int b, int r) { return std::min(kBrickSize, r - b * kBrickSize); }
 
-// Reads level(l) (spec 4.4). `flags` and `coded` are scratch buffers kept across levels.
+// The voxel box of brick (bx, by, bz): [x0, x1) x [y0, y1) x [z0, z1).
+struct BrickBox {
+  int x0, x1, y0, y1, z0, z1;
+};
+BrickBox BrickAt(int bx, int by, int bz, int r) {
+  const int x0 = bx * kBrickSize, y0 = by * kBrickSize, z0 = bz * kBrickSize;
+  return {x0, x0 + BrickExtent(bx, r), y0, y0 + BrickExtent(by, r), z0, z0 + BrickExtent(bz, r)};
+}
+
+// Each row of a brick is contiguous in the dense layout (and in the coded order).
+// Writes the brick's rows from `src` (narrowing), or zeros when src is null; returns the end of
+// what it read.
+const int32_t* FillBrick(const BrickBox& box, int r, int c, const int32_t* src, int16_t* dense) {
+  const size_t rs = static_cast<size_t>(r);
+  const size_t row = static_cast<size_t>(box.x1 - box.x0) * c;
+  for (int z = box.z0; z < box.z1; ++z) {
+    for (int y = box.y0; y < box.y1; ++y) {
+      int16_t* dst = dense + ((z * rs + y) * rs + box.x0) * c;
+      if (src == nullptr) {
+        std::memset(dst, 0, row * sizeof(int16_t));
+        continue;
+      }
+      for (size_t i = 0; i < row; ++i) dst[i] = static_cast<int16_t>(src[i]);
+      src += row;
+    }
+  }
+  return src;
+}
+
+// Reads level(l) (spec 4.4). `flags` and `coded` are scratch buffers kept across levels;
+// `nonzero` holds the flags of the level's previous frame, so only the bricks that were
+// coded then and are not now need zeroing (mostly-zero grids stay cheap to decode).
 Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags,
-                 Buffer<int32_t>* coded, float* step, Buffer<int16_t>* values) {
+                 Buffer<int32_t>* coded, float* step, Buffer<int16_t>* values,
+                 Buffer<int32_t>* nonzero) {
   auto error = [l](const Status& status, const char* what) {
     return Status(status.code(), "grid level " + std::to_string(l) + what + status.message());
   };
@@ -43,31 +75,28 @@ Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags
   status = ReadSymbolBlock(reader, count, -32768, 32767, coded->data());
   if (!status.ok()) return error(status, " values: ");
 
-  // Unflagged bricks are zero; each row of a flagged brick is contiguous in both the coded
-  // order and the dense layout, so the scatter is a narrowing copy per row.
   const size_t rs = static_cast<size_t>(r);
-  values->resize(rs * rs * rs * static_cast<size_t>(c));
-  int16_t* dense = values->data();
-  std::memset(dense, 0, values->size() * sizeof(int16_t));  // assign() does not become memset
+  const size_t dense_size = rs * rs * rs * static_cast<size_t>(c);
+  const bool incremental = values->size() == dense_size && nonzero->size() == num_bricks;
+  if (!incremental) {
+    values->resize(dense_size);
+    std::memset(values->data(), 0, dense_size * sizeof(int16_t));  // assign() is no memset
+  }
   const int32_t* src = coded->data();
-  flag = flags->data();
+  int b = 0;
   for (int bz = 0; bz < n; ++bz) {
     for (int by = 0; by < n; ++by) {
-      for (int bx = 0; bx < n; ++bx) {
-        if (!*flag++) continue;
-        const int z0 = bz * kBrickSize, y0 = by * kBrickSize, x0 = bx * kBrickSize;
-        const int z1 = z0 + BrickExtent(bz, r), y1 = y0 + BrickExtent(by, r);
-        const size_t row = static_cast<size_t>(BrickExtent(bx, r)) * c;
-        for (int z = z0; z < z1; ++z) {
-          for (int y = y0; y < y1; ++y) {
-            int16_t* dst = dense + ((z * rs + y) * rs + x0) * c;
-            for (size_t i = 0; i < row; ++i) dst[i] = static_cast<int16_t>(src[i]);
-            src += row;
-          }
+      for (int bx = 0; bx < n; ++bx, ++b) {
+        const BrickBox box = BrickAt(bx, by, bz, r);
+        if ((*flags)[b]) {
+          src = FillBrick(box, r, c, src, values->data());
+        } else if (incremental && (*nonzero)[b]) {
+          FillBrick(box, r, c, nullptr, values->data());
         }
       }
     }
   }
+  nonzero->swap(*flags);
   return Status::Ok();
 }
 
@@ -89,11 +118,13 @@ Status ReadMotionGrid(ByteReader* reader, const GridConfig& config, MotionGrid* 
   Buffer<int32_t> coded(alloc);
   for (int l = 0; l < config.num_levels; ++l) {
     M4D_RETURN_IF_ERROR(ReadLevel(reader, l, config.resolution[l], config.channels[l], &flags,
-                                  &coded, &grid->step[l], &grid->values[l]));
+                                  &coded, &grid->step[l], &grid->values[l],
+                                  &grid->nonzero_bricks[l]));
   }
   // Levels the configuration no longer has give their memory back.
   for (int l = config.num_levels; l < kMaxGridLevels; ++l) {
     grid->values[l] = Buffer<int16_t>(grid->values[l].get_allocator());
+    grid->nonzero_bricks[l] = Buffer<int32_t>(grid->nonzero_bricks[l].get_allocator());
   }
   return Status::Ok();
 }

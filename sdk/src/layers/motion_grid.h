@@ -16,6 +16,7 @@ struct MotionGrid {
   MotionGrid() = default;
   explicit MotionGrid(const M4dAllocator* hooks) {
     for (auto& v : values) v = Buffer<int16_t>(HookedAllocator<int16_t>(hooks));
+    for (auto& f : nonzero_bricks) f = Buffer<int32_t>(HookedAllocator<int32_t>(hooks));
   }
   float box_min[3] = {0, 0, 0};
   float box_scale[3] = {1, 1, 1};
@@ -23,6 +24,9 @@ struct MotionGrid {
   // values[l] holds G_l[z][y][x][c], R_l^3 * C_l entries, x fastest then channels innermost:
   // index ((z * R + y) * R + x) * C + c.
   Buffer<int16_t> values[kMaxGridLevels];
+  // Reader state, not stream data: the brick flags values[l] was last read with (bricks
+  // outside them are zero). Empty when unknown; code that writes values directly clears it.
+  Buffer<int32_t> nonzero_bricks[kMaxGridLevels];
 };
 
 // Reads a MOTION_GRID payload into *grid (resizing its level buffers to the configuration).
