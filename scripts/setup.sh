@@ -9,7 +9,8 @@ packages=(
   libdraco-dev libglm-dev libeigen3-dev libzstd-dev
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libpng-dev libjpeg-dev
+  libcli11-dev nlohmann-json3-dev libpng-dev libjpeg-dev zlib1g-dev
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev gnuplot-nox
 )
 
 missing=()

@@ -1,0 +1,47 @@
+// Capture: a multi-view video as every training stage sees it, whatever layout it was
+// loaded from: cameras per frame (intrinsics at the loaded resolution, world-to-camera in
+// OpenCV axes, see sdk/src/render/camera.h), images decoded on demand, an initial point
+// cloud and the held-out test camera.
+#ifndef M4D_ENCODER_DATASET_CAPTURE_H_
+#define M4D_ENCODER_DATASET_CAPTURE_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "dataset/point_cloud.h"
+#include "image/image.h"
+#include "render/camera.h"
+
+namespace m4d {
+
+// Decodes one view's image. Implementations may keep state (open video decoders) but must
+// give the same pixels for the same (frame, camera) whatever the order of requests.
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // RGB (3 channels) at the capture's resolution into *rgb (its storage is reused).
+  virtual Status Load(int frame, int camera, Image* rgb) = 0;
+};
+
+struct Capture {
+  std::string layout;  // the layout it was read from, e.g. "n3dv"
+  int frame_count = 0;
+  std::vector<std::string> camera_names;     // one per camera
+  std::vector<std::vector<Camera>> cameras;  // [frame][camera]; a fixed rig repeats its row
+  int test_camera = -1;                      // held out from training; -1: none
+  PointCloud initial_points;                 // may be empty: initialise randomly in bounds
+  std::unique_ptr<FrameSource> frames;
+
+  int camera_count() const { return static_cast<int>(camera_names.size()); }
+  const Camera& camera(int frame, int index) const { return cameras[frame][index]; }
+  // The cameras trained on: every camera but test_camera, in index order.
+  std::vector<int> TrainCameras() const;
+  // frames->Load with range checks (M4D_ERR_INVALID_ARG for a bad index).
+  Status LoadImage(int frame, int camera, Image* rgb) const;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_DATASET_CAPTURE_H_
