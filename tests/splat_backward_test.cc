@@ -397,6 +397,30 @@ TEST(SplatBackwardTest, GradientsDoNotDependOnThreads) {
   }
 }
 
+TEST(SplatBackwardTest, FrozenLayerGetsNothingAndTheOtherLayerIsUnchanged) {
+  const Camera camera = test::TestCamera(120, 90);
+  const std::vector<GaussianSet> sets = {test::RandomGaussians(Options(800, 3), 51),
+                                         test::RandomGaussians(Options(600, 1), 52)};
+  const Loss loss = RandomLoss(camera, false, 10);
+  RenderSettings settings;
+  RenderContext ctx;
+  Gradients all(sets);
+  ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &all).ok());
+  Gradients frozen(sets);
+  frozen.views[0] = LayerGradients();  // layer 0 frozen: all arrays null
+  ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &frozen).ok());
+  EXPECT_EQ(frozen.positions[1], all.positions[1]);
+  EXPECT_EQ(frozen.rotations[1], all.rotations[1]);
+  EXPECT_EQ(frozen.sh[1], all.sh[1]);
+  EXPECT_EQ(frozen.mean2d, all.mean2d);  // the view-space gradient covers frozen layers too
+  EXPECT_EQ(frozen.positions[0], std::vector<float>(3 * sets[0].size(), -7.0f));
+  // Some but not all arrays null is an error.
+  Gradients partial(sets);
+  partial.views[0].sh = nullptr;
+  EXPECT_EQ(RunForwardBackward(camera, sets, settings, loss, &ctx, &partial).code(),
+            M4D_ERR_INVALID_ARG);
+}
+
 TEST(SplatBackwardTest, CulledGaussiansGetZeroGradients) {
   const Camera camera = test::TestCamera(32, 24);
   GaussianSet set = test::RandomGaussians(Options(6, 2), 12);

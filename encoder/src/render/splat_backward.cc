@@ -12,6 +12,11 @@ constexpr size_t kGaussianChunk = 256;
 
 Status InvalidArg(const char* message) { return Status(M4D_ERR_INVALID_ARG, message); }
 
+// A layer whose gradient arrays are all null gets none (its Gaussians are not trained).
+bool Frozen(const LayerGradients& g) {
+  return !g.positions && !g.log_scales && !g.rotations && !g.opacity_logits && !g.sh;
+}
+
 Status ValidateOutputs(const RenderContext& ctx, const SplatGradients& out) {
   if (out.layer_count != static_cast<int>(ctx.layers.size()) ||
       (out.layer_count > 0 && !out.layers)) {
@@ -19,7 +24,7 @@ Status ValidateOutputs(const RenderContext& ctx, const SplatGradients& out) {
   }
   for (int l = 0; l < out.layer_count; ++l) {
     const LayerGradients& g = out.layers[l];
-    if (ctx.layers[l].count > 0 &&
+    if (ctx.layers[l].count > 0 && !Frozen(g) &&
         (!g.positions || !g.log_scales || !g.rotations || !g.opacity_logits || !g.sh)) {
       return InvalidArg("backward: null gradient array");
     }
@@ -78,11 +83,14 @@ void BackpropagateGaussians(const SplatGradients& out, RenderContext* ctx,
                         const GaussianLayerView& layer = ctx->layers[l];
                         const size_t lo = std::max(begin, offset);
                         const size_t hi = std::min(end, offset + layer.count);
+                        const bool frozen = Frozen(out.layers[l]);
                         for (size_t g = lo; g < hi; ++g) {
                           const size_t i = g - offset;
                           SplatGradient grad = {};
                           if (ctx->splats.radius[g] == 0.0f) {
-                            ZeroGradients(layer, i, out.layers[l]);
+                            if (!frozen) ZeroGradients(layer, i, out.layers[l]);
+                          } else if (frozen) {
+                            if (out.mean2d) grad = GatherSplatGradient(*ctx, ws, g);
                           } else {
                             grad = GatherSplatGradient(*ctx, ws, g);
                             BackpropagateProjection(pc, layer, ctx->settings.sh_degree, i, grad,

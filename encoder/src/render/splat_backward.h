@@ -19,7 +19,9 @@
 namespace m4d {
 
 struct SplatGradients {
-  const LayerGradients* layers = nullptr;  // one per rendered layer, in order
+  // One per rendered layer, in order. A layer whose arrays are all null is frozen: it gets no
+  // gradients (and costs nothing beyond the blending), e.g. the static set while motion trains.
+  const LayerGradients* layers = nullptr;
   int layer_count = 0;
   // Optional, 2 per Gaussian (global index): dL/d(projected mean) in pixels, the view-space
   // gradient of densification (see viewspace_gradient.h for the reference's units).
