@@ -72,34 +72,63 @@ void AdamOptimizer::Step(int parameter, float* values, const float* gradients, T
   }
 }
 
+namespace {
+
+struct AdamConstants {
+  float b1, b2, c1, c2;  // betas and 1 - betas
+  float step_size;       // lr / (1 - beta1^t)
+  float inv_bias2_sqrt;  // 1 / sqrt(1 - beta2^t)
+  float eps;
+};
+
+// The update of a contiguous span; restrict-qualified so that it vectorises.
+void AdamSpan(const AdamConstants& k, size_t count, const float* __restrict__ gradients,
+              float* __restrict__ values, float* __restrict__ m, float* __restrict__ v) {
+  for (size_t i = 0; i < count; ++i) {
+    const float g = gradients[i];
+    const float mi = k.b1 * m[i] + k.c1 * g;
+    const float vi = k.b2 * v[i] + k.c2 * g * g;
+    m[i] = mi;
+    v[i] = vi;
+    values[i] -= k.step_size * mi / (std::sqrt(vi) * k.inv_bias2_sqrt + k.eps);
+  }
+}
+
+}  // namespace
+
 void AdamOptimizer::StepGroup(Group* group, float* values, const float* gradients,
                               ThreadPool* pool) {
   ++group->steps;
   // PyTorch's Adam: p -= lr / (1 - b1^t) * m / (sqrt(v) / sqrt(1 - b2^t) + eps).
   const double t = static_cast<double>(group->steps);
   const double beta1 = settings_.beta1, beta2 = settings_.beta2;
-  const float b1 = static_cast<float>(beta1), b2 = static_cast<float>(beta2);
-  const float c1 = static_cast<float>(1.0 - beta1), c2 = static_cast<float>(1.0 - beta2);
-  const float eps = static_cast<float>(settings_.epsilon);
-  const float step_size = static_cast<float>(group->lr / (1.0 - std::pow(beta1, t)));
-  const float inv_bias2_sqrt = static_cast<float>(1.0 / std::sqrt(1.0 - std::pow(beta2, t)));
+  AdamConstants k;
+  k.b1 = static_cast<float>(beta1);
+  k.b2 = static_cast<float>(beta2);
+  k.c1 = static_cast<float>(1.0 - beta1);
+  k.c2 = static_cast<float>(1.0 - beta2);
+  k.step_size = static_cast<float>(group->lr / (1.0 - std::pow(beta1, t)));
+  k.inv_bias2_sqrt = static_cast<float>(1.0 / std::sqrt(1.0 - std::pow(beta2, t)));
+  k.eps = static_cast<float>(settings_.epsilon);
   Parameter& p = params_[group->parameter];
   const size_t width = static_cast<size_t>(p.width);
   const size_t first = static_cast<size_t>(group->first_column);
   const size_t columns = static_cast<size_t>(group->column_count);
   float* m = p.m.data();
   float* v = p.v.data();
-  auto update = [=](size_t begin, size_t end, int) {
+  // A group spanning whole rows is one contiguous span per task; others go row by row.
+  auto update = [&](size_t begin, size_t end, int) {
+    if (columns == width) {
+      const size_t a = begin * width, count = (end - begin) * width;
+      AdamSpan(k, count, gradients + a, values + a, m + a, v + a);
+      return;
+    }
     for (size_t r = begin; r < end; ++r) {
-      const size_t base = r * width + first;
-      for (size_t c = base; c < base + columns; ++c) {
-        const float g = gradients[c];
-        m[c] = b1 * m[c] + c1 * g;
-        v[c] = b2 * v[c] + c2 * g * g;
-        values[c] -= step_size * m[c] / (std::sqrt(v[c]) * inv_bias2_sqrt + eps);
-      }
+      const size_t a = r * width + first;
+      AdamSpan(k, columns, gradients + a, values + a, m + a, v + a);
     }
   };
+  // Fixed task boundaries: the same split whatever the pool.
   constexpr size_t kRowsPerTask = 8192;
   if (pool == nullptr || rows_ <= kRowsPerTask) {
     update(0, rows_, 0);
