@@ -1,0 +1,252 @@
+#include "train/keyframe_trainer.h"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "metrics/psnr.h"
+#include "render/splat_renderer.h"
+#include "train/gaussian_optimizer.h"
+#include "train/point_initialisation.h"
+#include "train/scene_extent.h"
+
+namespace m4d {
+namespace {
+
+constexpr double kEmaWeight = 0.4;  // of the newest value, as the reference's progress bar
+
+Status OptionError(const std::string& what) {
+  return Status(M4D_ERR_INVALID_ARG, "keyframe training options: " + what);
+}
+
+}  // namespace
+
+KeyframeTrainingOptions KeyframeTrainingOptions::Reference() { return KeyframeTrainingOptions(); }
+
+KeyframeTrainingOptions KeyframeTrainingOptions::Short() {
+  KeyframeTrainingOptions o;
+  o.iterations = 7000;
+  o.learning_rates.position.max_steps = 7000;
+  o.densify_from = 500;
+  o.densify_until = 3500;
+  o.densify_interval = 100;
+  o.opacity_reset_interval = 3000;
+  o.sh_degree_interval = 233;
+  o.densification.max_gaussians = 1000000;
+  return o;
+}
+
+Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
+  if (o.iterations < 0) return OptionError("negative iteration count");
+  if (o.densify_from < 0 || o.densify_until < 0 || o.densify_interval < 0 ||
+      o.opacity_reset_interval < 0 || o.sh_degree_interval < 0) {
+    return OptionError("negative interval");
+  }
+  if (o.start_sh_degree < 0 || o.start_sh_degree > 3) return OptionError("start SH degree");
+  if (!(o.ssim_weight >= 0.0 && o.ssim_weight <= 1.0)) return OptionError("SSIM weight");
+  if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
+    return OptionError("opacity reset value");
+  }
+  if (!(o.scene_extent >= 0.0f) || !std::isfinite(o.scene_extent)) {
+    return OptionError("scene extent");
+  }
+  if (o.threads < 0 || o.threads > kMaxRenderThreads) return OptionError("thread count");
+  const DensificationSettings& d = o.densification;
+  if (!(d.gradient_threshold >= 0.0f) || !(d.percent_dense >= 0.0f) ||
+      !(d.min_opacity > 0.0f && d.min_opacity < 1.0f) || !(d.max_screen_radius >= 0.0f) ||
+      !(d.max_world_scale > 0.0f) || !(d.split_scale_divisor > 0.0f) ||
+      d.max_gaussians > kMaxRenderGaussians) {
+    return OptionError("densification settings");
+  }
+  const GaussianLearningRates& r = o.learning_rates;
+  for (float lr : {r.position.initial, r.position.final, r.sh_dc, r.sh_rest, r.opacity, r.scaling,
+                   r.rotation}) {
+    if (!(lr >= 0.0f) || !std::isfinite(lr)) return OptionError("learning rate");
+  }
+  if ((r.position.initial > 0.0f) != (r.position.final > 0.0f)) {
+    return OptionError("position learning rates must be both zero or both positive");
+  }
+  return Status::Ok();
+}
+
+Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingViews views,
+                             GaussianModel initial) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
+  if (views.size() == 0) return Status(M4D_ERR_INVALID_ARG, "keyframe training: no views");
+  if (initial.size() == 0) return Status(M4D_ERR_INVALID_ARG, "keyframe training: no Gaussians");
+  if (initial.size() > kMaxRenderGaussians) {
+    return LimitError("keyframe training: too many Gaussians");
+  }
+  options_ = options;
+  scene_extent_ =
+      options.scene_extent > 0.0f ? options.scene_extent : CameraSceneBounds(views.cameras).extent;
+  if (!(scene_extent_ > 0.0f)) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "keyframe training: zero scene extent (set it when the cameras share a centre)");
+  }
+  views_ = std::move(views);
+  model_ = std::move(initial);
+  gradients_ = GaussianModel();
+  gradients_.sh_degree = model_.sh_degree;
+  optimizer_ = MakeGaussianOptimizer(model_, options.learning_rates, scene_extent_);
+  stats_.Reset(model_.size());
+  iteration_ = 0;
+  active_sh_degree_ = std::min(options.start_sh_degree, model_.sh_degree);
+  rng_ = std::make_unique<TrainingRandom>(options.seed);
+  view_order_.clear();
+  view_cursor_ = 0;
+  pool_ = std::make_unique<ThreadPool>(options.threads);
+  loss_ = PhotometricLoss(options.ssim_weight);
+  progress_ = TrainingProgress();
+  progress_.iterations = options.iterations;
+  progress_.gaussians = model_.size();
+  densify_totals_ = DensifyCounts();
+  return Status::Ok();
+}
+
+int KeyframeTrainer::NextView() {
+  if (view_cursor_ == view_order_.size()) {
+    view_order_.resize(static_cast<size_t>(views_.size()));
+    for (size_t v = 0; v < view_order_.size(); ++v) view_order_[v] = static_cast<int>(v);
+    rng_->Shuffle(&view_order_);
+    view_cursor_ = 0;
+  }
+  return view_order_[view_cursor_++];
+}
+
+RenderSettings KeyframeTrainer::Settings() const {
+  RenderSettings settings;
+  settings.threads = options_.threads;
+  settings.sh_degree = active_sh_degree_;
+  for (int c = 0; c < 3; ++c) settings.background[c] = options_.background[c];
+  return settings;
+}
+
+Status KeyframeTrainer::ForwardBackward(int view) {
+  const Camera& camera = views_.cameras[view];
+  const Image& target = views_.images[view];
+  const GaussianLayerView layer = LayerView(model_);
+  M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, Settings(), nullptr, &context_));
+  Reshape(camera.width, camera.height, 3, &rendered_);
+  std::copy(context_.color.begin(), context_.color.end(), rendered_.pixels.begin());
+  M4D_RETURN_IF_ERROR(loss_.Evaluate(rendered_, target, &last_loss_, &loss_gradient_));
+
+  gradients_.Resize(model_.size());
+  mean2d_.resize(2 * model_.size());
+  const LayerGradients layer_gradients = GradientView(&gradients_);
+  SplatGradients out;
+  out.layers = &layer_gradients;
+  out.layer_count = 1;
+  out.mean2d = mean2d_.data();
+  M4D_RETURN_IF_ERROR(
+      RenderBackward(loss_gradient_.pixels.data(), nullptr, &context_, out, &backward_workspace_));
+
+  double mse = 0;
+  M4D_RETURN_IF_ERROR(MeanSquaredError(rendered_, target, &mse));
+  const double psnr = mse > 0 ? -10.0 * std::log10(mse) : 100.0;
+  const bool first = iteration_ == 1;
+  progress_.loss =
+      first ? last_loss_.loss : kEmaWeight * last_loss_.loss + (1 - kEmaWeight) * progress_.loss;
+  progress_.psnr = first ? psnr : kEmaWeight * psnr + (1 - kEmaWeight) * progress_.psnr;
+  return Status::Ok();
+}
+
+Status KeyframeTrainer::Densify() {
+  const bool prune_by_size =
+      options_.opacity_reset_interval > 0 && iteration_ > options_.opacity_reset_interval;
+  DensifyCounts counts;
+  M4D_RETURN_IF_ERROR(DensifyAndPrune(options_.densification, scene_extent_, prune_by_size,
+                                      rng_.get(), &model_, &optimizer_, &stats_, &counts));
+  densify_totals_.cloned += counts.cloned;
+  densify_totals_.split += counts.split;
+  densify_totals_.pruned += counts.pruned;
+  return Status::Ok();
+}
+
+Status KeyframeTrainer::Step() {
+  if (!rng_) return Status(M4D_ERR_INVALID_ARG, "keyframe training: not initialised");
+  const int it = ++iteration_;
+  optimizer_.SetLearningRate(kGroupPositions,
+                             options_.learning_rates.position.At(it) * scene_extent_);
+  if (options_.sh_degree_interval > 0 && it % options_.sh_degree_interval == 0 &&
+      active_sh_degree_ < model_.sh_degree) {
+    ++active_sh_degree_;
+  }
+  M4D_RETURN_IF_ERROR(ForwardBackward(NextView()));
+
+  bool densified = false;
+  GaussianParameter skip = kGaussianParameterCount;
+  if (it < options_.densify_until) {
+    const Camera& camera = context_.camera;
+    stats_.Accumulate(context_.splats, mean2d_.data(), camera.width, camera.height);
+    if (it > options_.densify_from && options_.densify_interval > 0 &&
+        it % options_.densify_interval == 0) {
+      M4D_RETURN_IF_ERROR(Densify());
+      densified = true;
+    }
+    if (options_.opacity_reset_interval > 0 && it % options_.opacity_reset_interval == 0) {
+      ResetOpacity(options_.opacity_reset_value, &model_, &optimizer_);
+      skip = kParamOpacityLogits;
+    }
+  }
+  if (!densified) StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
+  progress_.iteration = it;
+  progress_.gaussians = model_.size();
+  return Status::Ok();
+}
+
+Status KeyframeTrainer::Train(const ProgressCallback& progress, int progress_every) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point last_report = Clock::now();
+  int last_iteration = iteration_;
+  while (iteration_ < options_.iterations) {
+    M4D_RETURN_IF_ERROR(Step());
+    const bool report = progress_every > 0 &&
+                        (iteration_ % progress_every == 0 || iteration_ == options_.iterations);
+    if (progress && report) {
+      const Clock::time_point now = Clock::now();
+      const double seconds = std::chrono::duration<double>(now - last_report).count();
+      progress_.iterations_per_second = seconds > 0 ? (iteration_ - last_iteration) / seconds : 0;
+      last_report = now;
+      last_iteration = iteration_;
+      progress(progress_);
+    }
+  }
+  return Status::Ok();
+}
+
+Status KeyframeTrainer::Evaluate(const TrainingViews& views, EvaluationResult* result) {
+  if (!rng_) return Status(M4D_ERR_INVALID_ARG, "keyframe training: not initialised");
+  return EvaluateViews(model_, views, Settings(), &context_, result);
+}
+
+Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
+                     const ProgressCallback& progress, GaussianModel* model) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
+  PointInitialisationOptions init;
+  init.threads = options.threads;
+  GaussianModel initial;
+  if (capture.initial_points.size() > 0) {
+    M4D_RETURN_IF_ERROR(InitialiseFromPoints(capture.initial_points, init, &initial));
+  } else {
+    const SceneBounds bounds = CameraSceneBounds(views.cameras);
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = bounds.centre[a] - bounds.extent;
+      hi[a] = bounds.centre[a] + bounds.extent;
+    }
+    M4D_RETURN_IF_ERROR(
+        InitialiseRandom(lo, hi, options.random_points, options.seed, init, &initial));
+  }
+  KeyframeTrainer trainer;
+  M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
+  M4D_RETURN_IF_ERROR(trainer.Train(progress));
+  *model = trainer.TakeModel();
+  return Status::Ok();
+}
+
+}  // namespace m4d
