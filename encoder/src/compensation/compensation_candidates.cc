@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+
+#include "train/training_random.h"
 
 namespace m4d {
 namespace {
@@ -28,9 +29,8 @@ void RotationMatrix(const float* q, float r[9]) {
 }
 
 // Appends two children of Gaussian i: centres from N(mu, 2 Sigma), scales / divisor.
-void Split(const GaussianSet& moved, size_t i, float divisor, std::mt19937* rng,
+void Split(const GaussianSet& moved, size_t i, float divisor, TrainingRandom* rng,
            GaussianSet* added) {
-  std::normal_distribution<float> n01;
   float r[9];
   RotationMatrix(&moved.rotations[4 * i], r);
   for (int child = 0; child < 2; ++child) {
@@ -38,7 +38,7 @@ void Split(const GaussianSet& moved, size_t i, float divisor, std::mt19937* rng,
     const size_t j = added->size() - 1;
     float local[3];
     for (int a = 0; a < 3; ++a) {
-      local[a] = std::sqrt(2.0f) * std::exp(moved.log_scales[3 * i + a]) * n01(*rng);
+      local[a] = std::sqrt(2.0f) * std::exp(moved.log_scales[3 * i + a]) * rng->Normal();
     }
     for (int a = 0; a < 3; ++a) {
       added->positions[3 * j + a] +=
@@ -65,7 +65,7 @@ CompensationCandidates ProposeCompensation(const GaussianSet& moved,
   out.added.sh_degree = moved.sh_degree;
   const size_t n = moved.size();
   out.removed.assign(n, 0);
-  std::mt19937 rng(seed);
+  TrainingRandom rng(seed);
   for (size_t i = 0; i < n; ++i) {
     if (viewspace_gradient[i] > thresholds.gradient) {
       CopyGaussian(moved, i, &out.added);

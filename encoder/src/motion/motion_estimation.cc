@@ -1,0 +1,257 @@
+#include "motion/motion_estimation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "render/splat_renderer.h"
+#include "train/adam_optimizer.h"
+#include "train/training_random.h"
+
+namespace m4d {
+namespace {
+
+constexpr float kMaxGridValue = 2047.0f;  // what the grid writer can code (+-2047)
+
+// One Adam per tensor: the optimizer keeps one row count for all its parameters.
+struct TensorAdam {
+  AdamOptimizer adam;
+  int parameter = 0;
+
+  TensorAdam(size_t rows, int width, float lr) {
+    parameter = adam.AddParameter(width);
+    adam.ResizeRows(rows);
+    adam.AddGroup("values", parameter, 0, width, lr);
+  }
+  void Step(std::vector<float>* values, const std::vector<float>& grad) {
+    adam.Step(parameter, values->data(), grad.data(), nullptr);
+  }
+};
+
+// The dynamic set with moved positions and rotations, for rendering.
+GaussianLayerView MovedView(const GaussianSet& set, const std::vector<float>& positions,
+                            const std::vector<float>& rotations) {
+  GaussianLayerView view = LayerView(set);
+  view.positions = positions.data();
+  view.rotations = rotations.data();
+  return view;
+}
+
+void ZeroParameters(MotionParameters* p) {
+  for (auto& level : p->grid) std::fill(level.begin(), level.end(), 0.0f);
+  for (MlpLayer& layer : p->mlp.layers) {
+    std::fill(layer.weights.begin(), layer.weights.end(), 0.0f);
+    std::fill(layer.biases.begin(), layer.biases.end(), 0.0f);
+  }
+}
+
+void RoundGrid(MotionParameters* p) {
+  for (auto& level : p->grid) {
+    for (float& v : level) v = std::clamp(std::nearbyint(v), -kMaxGridValue, kMaxGridValue);
+  }
+}
+
+}  // namespace
+
+MotionEstimator::MotionEstimator(const GridConfig& config, const MlpConfig& mlp_config,
+                                 const float* steps)
+    : config_(config), mlp_config_(mlp_config), entropy_(config.feature_count()) {
+  std::copy(steps, steps + kMaxGridLevels, steps_);
+  StartGop(0);
+}
+
+void MotionEstimator::StartGop(uint64_t seed) {
+  // A small last layer: motion starts near zero and the grid sets its size.
+  mlp_ = InitialMotionMlp(config_.feature_count(), mlp_config_, 0.1f,
+                          static_cast<uint32_t>(seed ^ (seed >> 32)));
+  for (int l = 0; l < kMaxGridLevels; ++l) {
+    previous_active_[l].clear();
+    previous_values_[l].clear();
+  }
+}
+
+double MotionEstimator::RateAndGradient(const MotionParameters& noisy, double weight,
+                                        MotionParameters* grad,
+                                        std::vector<float>* entropy_grad) const {
+  // L_rate is in bits per grid value over the whole grid (voxels outside the stencil are
+  // zero); gradients are of weight * L_rate.
+  const float scale = static_cast<float>(weight / static_cast<double>(config_.total_values()));
+  double bits = 0;
+  int d = 0;
+  for (int l = 0; l < config_.num_levels; ++l) {
+    const int channels = config_.channels[l];
+    const size_t active = noisy.grid[l].size() / channels;
+    const double idle = static_cast<double>(config_.level_values(l) / channels) - active;
+    for (int c = 0; c < channels; ++c, ++d) {
+      bits += entropy_.Bits(d, noisy.grid[l].data() + c, active, channels, scale,
+                            grad ? grad->grid[l].data() + c : nullptr,
+                            entropy_grad ? entropy_grad->data() : nullptr);
+      const float zero = 0.0f;
+      bits += idle * entropy_.Bits(d, &zero, 1, 1, static_cast<float>(idle) * scale, nullptr,
+                                   entropy_grad ? entropy_grad->data() : nullptr);
+    }
+  }
+  return bits;
+}
+
+Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& static_set,
+                                 const GaussianSet& dynamic_set, const GridBox& box,
+                                 const MotionEstimationOptions& options,
+                                 MotionEstimationResult* result) {
+  M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
+  if (views.size() == 0 || options.iterations < 0) {
+    return Status(M4D_ERR_INVALID_ARG, "motion estimation: no views or negative iterations");
+  }
+  const size_t n = dynamic_set.size();
+  MotionStencil& stencil = result->stencil;
+  BuildMotionStencil(config_, box, dynamic_set.positions.data(), n, &stencil);
+  result->box = box;
+
+  MotionParameters params;
+  ZeroGrid(config_, stencil, &params);
+  if (options.warm_start) {
+    for (int l = 0; l < config_.num_levels; ++l) {
+      const int channels = config_.channels[l];
+      const std::vector<uint32_t>& prev = previous_active_[l];
+      for (size_t v = 0; v < stencil.active[l].size(); ++v) {
+        auto it = std::lower_bound(prev.begin(), prev.end(), stencil.active[l][v]);
+        if (it == prev.end() || *it != stencil.active[l][v]) continue;
+        const size_t p = static_cast<size_t>(it - prev.begin());
+        std::memcpy(&params.grid[l][v * channels], &previous_values_[l][p * channels],
+                    channels * sizeof(float));
+      }
+    }
+  }
+  params.mlp = mlp_;
+  MotionParameters grad = params;
+  MotionParameters noisy = params;
+
+  std::vector<std::unique_ptr<TensorAdam>> grid_adam, mlp_adam;
+  for (int l = 0; l < config_.num_levels; ++l) {
+    grid_adam.push_back(std::make_unique<TensorAdam>(stencil.active[l].size(), config_.channels[l],
+                                                     options.grid_learning_rate));
+  }
+  for (const MlpLayer& layer : params.mlp.layers) {
+    mlp_adam.push_back(std::make_unique<TensorAdam>(1, static_cast<int>(layer.weights.size()),
+                                                    options.mlp_learning_rate));
+    mlp_adam.push_back(std::make_unique<TensorAdam>(1, static_cast<int>(layer.biases.size()),
+                                                    options.mlp_learning_rate));
+  }
+  TensorAdam entropy_adam(static_cast<size_t>(entropy_.distributions()),
+                          LogisticEntropyModel::kParameters, options.entropy_learning_rate);
+  std::vector<float> entropy_grad(entropy_.parameters().size());
+
+  RenderSettings settings;
+  settings.threads = options.threads;
+  settings.sh_degree = options.sh_degree;
+  std::copy(options.background, options.background + 3, settings.background);
+  RenderContext context;
+  BackwardWorkspace workspace;
+  PhotometricLoss loss(options.ssim_weight);
+  Image rendered, loss_grad;
+  std::vector<float> moved_p(3 * n), moved_q(4 * n), d_p(3 * n), d_q(4 * n);
+  std::vector<float> d_scales(3 * n), d_logits(n), d_sh(dynamic_set.sh.size());
+  LayerGradients layer_grads[2];  // the static layer stays frozen
+  layer_grads[1] = {d_p.data(), d_scales.data(), d_q.data(), d_logits.data(), d_sh.data()};
+  SplatGradients outputs;
+  outputs.layers = layer_grads;
+  outputs.layer_count = 2;
+
+  TrainingRandom rng(options.seed);
+  std::vector<int> order;
+  size_t cursor = 0;
+  MotionField field;
+  double color_sum = 0;
+  int color_count = 0;
+  for (int it = 0; it < options.iterations; ++it) {
+    if (cursor == order.size()) {
+      order.resize(views.size());
+      for (int v = 0; v < views.size(); ++v) order[v] = v;
+      rng.Shuffle(&order);
+      cursor = 0;
+      color_sum = 0;
+      color_count = 0;
+    }
+    const int view = order[cursor++];
+    for (int l = 0; l < config_.num_levels; ++l) {
+      for (size_t k = 0; k < params.grid[l].size(); ++k) {
+        noisy.grid[l][k] =
+            params.grid[l][k] + (options.simulate_quantization ? rng.Uniform() - 0.5f : 0.0f);
+      }
+    }
+    noisy.mlp = params.mlp;
+    field.Forward(config_, steps_, stencil, noisy, dynamic_set.positions.data(),
+                  dynamic_set.rotations.data(), moved_p.data(), moved_q.data());
+    const GaussianLayerView layers[2] = {LayerView(static_set),
+                                         MovedView(dynamic_set, moved_p, moved_q)};
+    const Camera& camera = views.cameras[view];
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
+    rendered.width = camera.width;
+    rendered.height = camera.height;
+    rendered.channels = 3;
+    rendered.pixels = context.color;
+    PhotometricLossValue value;
+    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &loss_grad));
+    color_sum += value.loss;
+    ++color_count;
+    M4D_RETURN_IF_ERROR(
+        RenderBackward(loss_grad.pixels.data(), nullptr, &context, outputs, &workspace));
+    ZeroParameters(&grad);
+    field.Backward(d_p.data(), d_q.data(), &grad);
+    if (options.rate_term) {
+      std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
+      RateAndGradient(noisy, options.rate_weight, &grad, &entropy_grad);
+      entropy_adam.Step(&entropy_.parameters(), entropy_grad);
+    }
+    for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);
+    if (options.train_mlp) {
+      for (size_t j = 0; j < params.mlp.layers.size(); ++j) {
+        mlp_adam[2 * j]->Step(&params.mlp.layers[j].weights, grad.mlp.layers[j].weights);
+        mlp_adam[2 * j + 1]->Step(&params.mlp.layers[j].biases, grad.mlp.layers[j].biases);
+      }
+    }
+  }
+  result->color_loss = color_count ? color_sum / color_count : 0.0;
+
+  RoundGrid(&params);
+  result->rate_bits = RateAndGradient(params, 0.0, nullptr, nullptr);
+  field.Forward(config_, steps_, stencil, params, dynamic_set.positions.data(),
+                dynamic_set.rotations.data(), moved_p.data(), moved_q.data());
+  result->motion.assign(7 * n, 0.0f);
+  const Eigen::MatrixXf& out = field.outputs();
+  for (size_t m = 0; m < field.moved().size(); ++m) {
+    std::memcpy(&result->motion[7 * field.moved()[m]], &out(0, static_cast<Eigen::Index>(m)),
+                7 * sizeof(float));
+  }
+  if (options.train_mlp) mlp_ = params.mlp;
+  for (int l = 0; l < config_.num_levels; ++l) {
+    previous_active_[l] = stencil.active[l];
+    previous_values_[l] = params.grid[l];
+  }
+  result->parameters = std::move(params);
+  return Status::Ok();
+}
+
+GridBox DynamicGridBox(const GaussianSet& dynamic_set, float lower, float upper, float margin) {
+  GridBox box;
+  const size_t n = dynamic_set.size();
+  if (n == 0) return box;
+  std::vector<float> axis(n);
+  for (int a = 0; a < 3; ++a) {
+    for (size_t i = 0; i < n; ++i) axis[i] = dynamic_set.positions[3 * i + a];
+    auto at = [&](float q) {
+      size_t k = std::min(n - 1, static_cast<size_t>(q * static_cast<float>(n - 1) + 0.5f));
+      std::nth_element(axis.begin(), axis.begin() + k, axis.end());
+      return axis[k];
+    };
+    float lo = at(lower), hi = at(upper);
+    float extent = std::max(hi - lo, 1e-3f);
+    lo -= margin * extent;
+    extent *= 1.0f + 2.0f * margin;
+    box.min[a] = lo;
+    box.scale[a] = 1.0f / extent;
+  }
+  return box;
+}
+
+}  // namespace m4d

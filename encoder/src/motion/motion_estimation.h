@@ -1,0 +1,102 @@
+// Motion estimation of one inter frame (paper sections 3.3 and 4.2): the motion grid of frame
+// t (and, on the first inter frame of a GOP, the shared MLP) trained so that the static set
+// plus the moved dynamic set of frame t-1 render the training views of frame t, under
+//   L_s2 = L_color + lambda_2 L_rate,
+// with simulated quantization (uniform noise of one quantization step on the grid values)
+// and L_rate the bits of the noisy grid under the learned entropy model per grid value.
+//
+// The dynamic set of frame t-1 is what the decoder reconstructed (closed loop); its positions
+// do not change while the grid is trained, so each Gaussian reads fixed voxels (MotionStencil)
+// and only those voxels are trained; all other voxels stay zero.
+#ifndef M4D_ENCODER_MOTION_MOTION_ESTIMATION_H_
+#define M4D_ENCODER_MOTION_MOTION_ESTIMATION_H_
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/status.h"
+#include "common/thread_pool.h"
+#include "layers/gaussian_set.h"
+#include "layers/motion_config.h"
+#include "metrics/photometric_loss.h"
+#include "motion/logistic_entropy_model.h"
+#include "motion/motion_field.h"
+#include "motion/motion_stencil.h"
+#include "render/render_context.h"
+#include "render/splat_backward.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+struct MotionEstimationOptions {
+  int iterations = 200;
+  float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)
+  float mlp_learning_rate = 1e-3f;
+  float entropy_learning_rate = 1e-2f;
+  double rate_weight = 1e-4;          // lambda_2
+  bool simulate_quantization = true;  // off: plain float grid during training
+  bool rate_term = true;              // off: L_s2 = L_color (ablation)
+  bool train_mlp = false;             // the first inter frame of a GOP
+  bool warm_start = true;             // start from the previous frame's grid
+  double ssim_weight = kDefaultSsimWeight;
+  int sh_degree = 3;
+  float background[3] = {0, 0, 0};
+  uint64_t seed = 0;
+  int threads = 0;
+};
+
+struct MotionEstimationResult {
+  // Integer grid values (rounded), the MLP, the stencil they were trained for.
+  MotionParameters parameters;
+  MotionStencil stencil;
+  GridBox box;
+  // Per Gaussian of the dynamic set: the 7 motion outputs with the rounded grid (zero for
+  // Gaussians outside the box), for the splitting of compensation.
+  std::vector<float> motion;
+  double rate_bits = 0;   // entropy-model estimate of the rounded grid, in bits
+  double color_loss = 0;  // mean L_color over the last pass through the views
+};
+
+class MotionEstimator {
+ public:
+  MotionEstimator(const GridConfig& config, const MlpConfig& mlp_config, const float* steps);
+
+  // A new GOP: a fresh MLP (seeded) and no previous grid to start from.
+  void StartGop(uint64_t seed);
+
+  // Trains the motion of one frame: static_set and dynamic_set are frame t-1's decoded sets,
+  // views frame t's training views.
+  Status Estimate(const TrainingViews& views, const GaussianSet& static_set,
+                  const GaussianSet& dynamic_set, const GridBox& box,
+                  const MotionEstimationOptions& options, MotionEstimationResult* result);
+
+  const MlpWeights& mlp() const { return mlp_; }
+  const LogisticEntropyModel& entropy_model() const { return entropy_; }
+  const GridConfig& config() const { return config_; }
+  const float* steps() const { return steps_; }
+
+ private:
+  // Bits of the grid under the entropy model; adds the gradients of weight * L_rate.
+  double RateAndGradient(const MotionParameters& noisy, double weight, MotionParameters* grad,
+                         std::vector<float>* entropy_grad) const;
+
+  GridConfig config_;
+  MlpConfig mlp_config_;
+  float steps_[kMaxGridLevels] = {};
+  MlpWeights mlp_;
+  LogisticEntropyModel entropy_;
+  // The previous frame's rounded grid, by dense voxel index, for warm starts.
+  std::vector<uint32_t> previous_active_[kMaxGridLevels];
+  std::vector<float> previous_values_[kMaxGridLevels];
+};
+
+// A grid box around the dynamic set: per axis the [lower, upper] quantiles of the positions,
+// widened by `margin` of the extent on each side (outliers get no motion, as the decoder
+// leaves Gaussians outside the box unchanged).
+GridBox DynamicGridBox(const GaussianSet& dynamic_set, float lower = 0.005f, float upper = 0.995f,
+                       float margin = 0.1f);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_MOTION_MOTION_ESTIMATION_H_
