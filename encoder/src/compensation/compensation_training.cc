@@ -1,0 +1,200 @@
+#include "compensation/compensation_training.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "metrics/photometric_loss.h"
+#include "render/splat_backward.h"
+#include "render/splat_renderer.h"
+#include "render/viewspace_gradient.h"
+#include "train/adam_optimizer.h"
+#include "train/densification.h"
+#include "train/gaussian_model.h"
+#include "train/gaussian_optimizer.h"
+#include "train/training_random.h"
+
+namespace m4d {
+namespace {
+
+RenderSettings Settings(int sh_degree, const float* background, int threads) {
+  RenderSettings settings;
+  settings.threads = threads;
+  settings.sh_degree = sh_degree;
+  std::copy(background, background + 3, settings.background);
+  return settings;
+}
+
+void CopyRender(const Camera& camera, const RenderContext& context, Image* image) {
+  image->width = camera.width;
+  image->height = camera.height;
+  image->channels = 3;
+  image->pixels = context.color;
+}
+
+GaussianSet KeepOnly(const GaussianSet& set, const std::vector<uint8_t>& removed) {
+  GaussianSet kept;
+  kept.sh_degree = set.sh_degree;
+  const size_t k = static_cast<size_t>(set.sh_floats());
+  for (size_t i = 0; i < set.size(); ++i) {
+    if (removed[i]) continue;
+    const size_t j = kept.size();
+    kept.Resize(j + 1);
+    std::copy_n(&set.positions[3 * i], 3, &kept.positions[3 * j]);
+    std::copy_n(&set.log_scales[3 * i], 3, &kept.log_scales[3 * j]);
+    std::copy_n(&set.rotations[4 * i], 4, &kept.rotations[4 * j]);
+    kept.opacity_logits[j] = set.opacity_logits[i];
+    std::copy_n(&set.sh[k * i], k, &kept.sh[k * j]);
+  }
+  return kept;
+}
+
+float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
+
+// Total blend weight of every Gaussian of the layers over all views.
+Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
+                    RenderSettings settings, RenderContext* context, std::vector<float>* total) {
+  settings.blend_weights = true;
+  for (int v = 0; v < views.size(); ++v) {
+    M4D_RETURN_IF_ERROR(RenderForward(views.cameras[v], layers, count, settings, nullptr, context));
+    if (v == 0) total->assign(context->blend_weight.size(), 0.0f);
+    for (size_t g = 0; g < total->size(); ++g) (*total)[g] += context->blend_weight[g];
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
+                                 const GaussianSet& moved, int sh_degree, const float* background,
+                                 int threads, std::vector<float>* mean_gradient) {
+  M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
+  const RenderSettings settings = Settings(sh_degree, background, threads);
+  const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
+  const size_t offset = static_set.size(), n = moved.size();
+  std::vector<float> sum(n, 0.0f), mean2d(2 * (offset + n));
+  std::vector<int> seen(n, 0);
+  LayerGradients frozen[2];
+  SplatGradients outputs;
+  outputs.layers = frozen;
+  outputs.layer_count = 2;
+  outputs.mean2d = mean2d.data();
+  RenderContext context;
+  BackwardWorkspace workspace;
+  PhotometricLoss loss;
+  Image rendered, grad;
+  for (int v = 0; v < views.size(); ++v) {
+    const Camera& camera = views.cameras[v];
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
+    CopyRender(camera, context, &rendered);
+    PhotometricLossValue value;
+    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[v], &value, &grad));
+    M4D_RETURN_IF_ERROR(RenderBackward(grad.pixels.data(), nullptr, &context, outputs, &workspace));
+    for (size_t i = 0; i < n; ++i) {
+      if (context.splats.radius[offset + i] == 0.0f) continue;
+      sum[i] += ViewspaceGradientNorm(&mean2d[2 * (offset + i)], camera.width, camera.height);
+      ++seen[i];
+    }
+  }
+  mean_gradient->assign(n, 0.0f);
+  for (size_t i = 0; i < n; ++i) {
+    if (seen[i]) (*mean_gradient)[i] = sum[i] / static_cast<float>(seen[i]);
+  }
+  return Status::Ok();
+}
+
+Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_set,
+                         const GaussianSet& moved, const CompensationCandidates& candidates,
+                         const CompensationOptions& options, CompensationResult* result) {
+  M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
+  if (candidates.removed.size() != moved.size()) {
+    return Status(M4D_ERR_INVALID_ARG, "compensation: removal flags differ from the moved set");
+  }
+  const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
+  RenderContext context;
+
+  // Moved Gaussians that no training view sees are removed with the split parents.
+  result->removed = candidates.removed;
+  {
+    const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
+    std::vector<float> weight;
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, &context, &weight));
+    result->removed_unseen = 0;
+    for (size_t i = 0; i < moved.size(); ++i) {
+      if (!result->removed[i] && weight[static_set.size() + i] < options.min_blend_weight) {
+        result->removed[i] = 1;
+        ++result->removed_unseen;
+      }
+    }
+  }
+  const GaussianSet kept = KeepOnly(moved, result->removed);
+
+  GaussianModel model, gradients;
+  M4D_RETURN_IF_ERROR(ModelFromGaussianSet(candidates.added, candidates.added.sh_degree, &model));
+  gradients = model;
+  AdamOptimizer optimizer =
+      MakeGaussianOptimizer(model, options.learning_rates, options.scene_extent);
+  LayerGradients layer_grads[3];  // static and moved frozen
+  SplatGradients outputs;
+  outputs.layers = layer_grads;
+  outputs.layer_count = 3;
+  BackwardWorkspace workspace;
+  PhotometricLoss loss(options.ssim_weight);
+  Image rendered, grad;
+  TrainingRandom rng(options.seed);
+  std::vector<int> order;
+  size_t cursor = 0;
+  double color_sum = 0;
+  int color_count = 0;
+  const size_t initial = model.size();
+  auto prune = [&]() {
+    std::vector<uint8_t> keep(model.size());
+    for (size_t i = 0; i < model.size(); ++i) {
+      keep[i] = Sigmoid(model.opacity_logits[i]) >= options.prune_opacity;
+    }
+    KeepGaussians(keep, &model, &optimizer, nullptr);
+    gradients.Resize(model.size());
+  };
+  for (int it = 1; it <= options.iterations && model.size() > 0; ++it) {
+    if (cursor == order.size()) {
+      order.resize(views.size());
+      for (int v = 0; v < views.size(); ++v) order[v] = v;
+      rng.Shuffle(&order);
+      cursor = 0;
+      color_sum = 0;
+      color_count = 0;
+    }
+    const int view = order[cursor++];
+    const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
+    const Camera& camera = views.cameras[view];
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 3, settings, nullptr, &context));
+    CopyRender(camera, context, &rendered);
+    PhotometricLossValue value;
+    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &grad));
+    color_sum += value.loss;
+    ++color_count;
+    layer_grads[2] = GradientView(&gradients);
+    M4D_RETURN_IF_ERROR(RenderBackward(grad.pixels.data(), nullptr, &context, outputs, &workspace));
+    // lambda_3 times the relaxed L0 norm (see the header): a constant pull on every logit.
+    for (float& g : gradients.opacity_logits) g += static_cast<float>(options.sparsity_weight);
+    StepGaussianOptimizer(gradients, kGaussianParameterCount, &optimizer, &model, nullptr);
+    if (options.prune_interval > 0 && it % options.prune_interval == 0) prune();
+  }
+  result->color_loss = color_count ? color_sum / color_count : 0.0;
+  prune();
+  // Added Gaussians that no view sees carry nothing.
+  if (model.size() > 0) {
+    const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
+    std::vector<float> weight;
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, &context, &weight));
+    std::vector<uint8_t> keep(model.size());
+    const size_t offset = static_set.size() + kept.size();
+    for (size_t i = 0; i < model.size(); ++i) {
+      keep[i] = weight[offset + i] >= options.min_blend_weight;
+    }
+    KeepGaussians(keep, &model, &optimizer, nullptr);
+  }
+  result->pruned_added = initial - model.size();
+  return ModelToGaussianSet(model, candidates.added.sh_degree, &result->added);
+}
+
+}  // namespace m4d
