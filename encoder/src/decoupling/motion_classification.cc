@@ -17,9 +17,14 @@ std::vector<uint8_t> ClassifyDynamic(const LookaheadMeasures& measures,
   if (k == 0 || neighbours.size() != n * k) return refined;
   std::vector<uint8_t> voted(n);
   for (size_t i = 0; i < n; ++i) {
-    size_t dynamic_votes = refined[i];
-    for (size_t j = 0; j < k; ++j) dynamic_votes += refined[neighbours[i * k + j]];
-    voted[i] = 2 * dynamic_votes > k + 1 ? 1 : 0;
+    size_t dynamic_votes = refined[i], voters = 1;
+    for (size_t j = 0; j < k; ++j) {
+      const uint32_t other = neighbours[i * k + j];
+      if (other >= n) continue;  // an empty slot (fewer Gaussians than K)
+      dynamic_votes += refined[other];
+      ++voters;
+    }
+    voted[i] = 2 * dynamic_votes > voters ? 1 : 0;
   }
   return voted;
 }

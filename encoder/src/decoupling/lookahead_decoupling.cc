@@ -1,0 +1,130 @@
+#include "decoupling/lookahead_decoupling.h"
+
+#include <cmath>
+
+#include "decoupling/lookahead_measures.h"
+#include "geometry/nearest_neighbours.h"
+#include "render/splat_renderer.h"
+#include "train/gaussian_optimizer.h"
+#include "train/view_evaluation.h"
+
+namespace m4d {
+namespace {
+
+// Positions and scales only, no density control, full SH, the keyframe's extent.
+KeyframeTrainingOptions FineTuneOptions(const DecouplingOptions& options, int sh_degree,
+                                        float scene_extent) {
+  KeyframeTrainingOptions o;
+  o.iterations = options.fine_tune_iterations;
+  o.learning_rates.position = {options.position_learning_rate,
+                               0.1f * options.position_learning_rate,
+                               std::max(1, options.fine_tune_iterations)};
+  o.densify_until = 0;
+  o.opacity_reset_interval = 0;
+  o.sh_degree_interval = 0;
+  o.start_sh_degree = sh_degree;
+  o.scene_extent = scene_extent;
+  std::copy(options.background, options.background + 3, o.background);
+  o.seed = options.seed;
+  o.threads = options.threads;
+  return o;
+}
+
+// Sums over the views of each Gaussian's blend weight and error-weighted blend weight, the
+// error of a pixel being the mean absolute error of its channels.
+Status ErrorWeights(const GaussianModel& model, const TrainingViews& views,
+                    const RenderSettings& settings, std::vector<float>* blend,
+                    std::vector<float>* error) {
+  blend->assign(model.size(), 0.0f);
+  error->assign(model.size(), 0.0f);
+  RenderContext context;
+  Image rendered;
+  std::vector<float> pixel_error;
+  RenderSettings weighted = settings;
+  weighted.blend_weights = true;
+  const GaussianLayerView layer = LayerView(model);
+  for (int v = 0; v < views.size(); ++v) {
+    M4D_RETURN_IF_ERROR(RenderView(model, views.cameras[v], settings, &context, &rendered));
+    const Image& truth = views.images[v];
+    pixel_error.resize(static_cast<size_t>(truth.width) * truth.height);
+    for (size_t p = 0; p < pixel_error.size(); ++p) {
+      float e = 0;
+      for (int c = 0; c < 3; ++c)
+        e += std::fabs(rendered.pixels[3 * p + c] - truth.pixels[3 * p + c]);
+      pixel_error[p] = e / 3.0f;
+    }
+    M4D_RETURN_IF_ERROR(
+        RenderForward(views.cameras[v], &layer, 1, weighted, pixel_error.data(), &context));
+    for (size_t i = 0; i < model.size(); ++i) {
+      (*blend)[i] += context.blend_weight[i];
+      (*error)[i] += context.error_weight[i];
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+void SplitModel(const GaussianModel& model, const std::vector<uint8_t>& flags,
+                GaussianModel* selected, GaussianModel* rest) {
+  *selected = model;
+  *rest = model;
+  std::vector<uint8_t> others(flags.size());
+  for (size_t i = 0; i < flags.size(); ++i) others[i] = flags[i] ? 0 : 1;
+  selected->Keep(flags);
+  rest->Keep(others);
+}
+
+Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& views_t1,
+                        float scene_extent, const DecouplingOptions& options,
+                        DecouplingResult* result) {
+  KeyframeTrainer trainer;
+  M4D_RETURN_IF_ERROR(
+      trainer.Init(FineTuneOptions(options, keyframe.sh_degree, scene_extent), views_t1, keyframe));
+  for (int group : {kGroupShDc, kGroupShRest, kGroupOpacity, kGroupRotation}) {
+    if (group < trainer.optimizer()->group_count()) trainer.optimizer()->SetFrozen(group, true);
+  }
+  M4D_RETURN_IF_ERROR(trainer.Train());
+  const GaussianModel& tuned = trainer.model();
+
+  RenderSettings settings;
+  settings.threads = options.threads;
+  settings.sh_degree = keyframe.sh_degree;
+  std::copy(options.background, options.background + 3, settings.background);
+  std::vector<float> blend, error;
+  M4D_RETURN_IF_ERROR(ErrorWeights(tuned, views_t1, settings, &blend, &error));
+
+  LookaheadInput in;
+  in.count = keyframe.size();
+  in.positions_before = keyframe.positions.data();
+  in.positions_after = tuned.positions.data();
+  in.log_scales_before = keyframe.log_scales.data();
+  in.log_scales_after = tuned.log_scales.data();
+  in.blend_weight = blend.data();
+  in.error_weight = error.data();
+  result->measures = MeasureLookahead(views_t1.cameras, in);
+
+  // The counts of the first two steps, for reports.
+  const LookaheadMeasures& m = result->measures;
+  const DecouplingThresholds& t = options.thresholds;
+  result->initially_dynamic = result->refined_dynamic = 0;
+  for (size_t i = 0; i < m.size(); ++i) {
+    const bool moved = m.displacement[i] > t.displacement || m.scale_change[i] > t.scale_change;
+    result->initially_dynamic += moved;
+    result->refined_dynamic += moved && !(m.error[i] > t.error);
+  }
+
+  std::vector<uint32_t> neighbours;
+  if (t.neighbours > 0 && keyframe.size() > 0) {
+    NearestNeighbours knn;
+    M4D_RETURN_IF_ERROR(knn.Build(keyframe.positions.data(), keyframe.size()));
+    neighbours.resize(keyframe.size() * static_cast<size_t>(t.neighbours));
+    knn.QueryAll(keyframe.positions.data(), keyframe.size(), t.neighbours, true, options.threads,
+                 neighbours.data(), nullptr);
+  }
+  result->dynamic = ClassifyDynamic(m, t, neighbours);
+  SplitModel(keyframe, result->dynamic, &result->dynamic_model, &result->static_model);
+  return Status::Ok();
+}
+
+}  // namespace m4d

@@ -1,0 +1,52 @@
+// Lookahead motion decoupling (paper sections 3.2 and 4.1): the keyframe model is fine-tuned on
+// a later frame t1 with only positions and scales free (count, rotations, opacities and colours
+// frozen), the changes and the fine-tuned model's blend-weighted errors are measured
+// (lookahead_measures.h), and the classification (motion_classification.h) splits the keyframe
+// model - not the fine-tuned one - into its static and dynamic sets.
+#ifndef M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
+#define M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "common/status.h"
+#include "decoupling/motion_classification.h"
+#include "train/gaussian_model.h"
+#include "train/keyframe_trainer.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+struct DecouplingOptions {
+  int fine_tune_iterations = 300;
+  // Position rate of the fine-tuning, times the scene extent, decaying tenfold over it (the
+  // paper's 5e-4 for its Gaussian optimisations); scales keep the keyframe's rate.
+  float position_learning_rate = 5e-4f;
+  DecouplingThresholds thresholds;
+  float background[3] = {0, 0, 0};
+  int threads = 0;
+  uint64_t seed = 0;
+};
+
+struct DecouplingResult {
+  GaussianModel static_model;
+  GaussianModel dynamic_model;
+  std::vector<uint8_t> dynamic;  // per Gaussian of the keyframe model
+  LookaheadMeasures measures;
+  size_t initially_dynamic = 0;  // after the thresholds
+  size_t refined_dynamic = 0;    // after the error refinement (before the vote)
+};
+
+// keyframe: the trained model of the keyframe; views_t1: the training views of frame t1.
+// scene_extent: the keyframe training's (for the position learning rate).
+Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& views_t1,
+                        float scene_extent, const DecouplingOptions& options,
+                        DecouplingResult* result);
+
+// Splits a model by per-Gaussian flags (1: into `selected`, 0: into `rest`).
+void SplitModel(const GaussianModel& model, const std::vector<uint8_t>& flags,
+                GaussianModel* selected, GaussianModel* rest);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
