@@ -316,3 +316,16 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
 }
 
 }  // namespace m4d
+
+namespace m4d {
+
+Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                              GaussianSet* decoded) {
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(set, quantization, &writer));
+  ByteReader reader(payload.data(), payload.size());
+  return ReadGaussianSet(&reader, set.sh_degree, kMaxGaussiansPerSet, decoded);
+}
+
+}  // namespace m4d

@@ -26,6 +26,11 @@ struct GaussianQuantization {
 Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
                         ByteWriter* out);
 
+// What a decoder reconstructs from WriteGaussianSet's output (the set coded, then decoded by
+// the SDK's reader), for stages that must continue from it before the packet is written.
+Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                              GaussianSet* decoded);
+
 }  // namespace m4d
 
 #endif  // M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_

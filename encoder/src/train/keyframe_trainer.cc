@@ -44,6 +44,7 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
     return OptionError("negative interval");
   }
   if (o.start_sh_degree < 0 || o.start_sh_degree > 3) return OptionError("start SH degree");
+  if (o.sh_degree < 0 || o.sh_degree > 3) return OptionError("SH degree");
   if (!(o.ssim_weight >= 0.0 && o.ssim_weight <= 1.0)) return OptionError("SSIM weight");
   if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
     return OptionError("opacity reset value");
@@ -229,6 +230,7 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
   PointInitialisationOptions init;
   init.threads = options.threads;
+  init.sh_degree = options.sh_degree;
   GaussianModel initial;
   if (capture.initial_points.size() > 0) {
     M4D_RETURN_IF_ERROR(InitialiseFromPoints(capture.initial_points, init, &initial));

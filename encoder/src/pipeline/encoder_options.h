@@ -1,0 +1,74 @@
+// EncoderOptions: everything that steers the reference encoder over a sequence: the stream's
+// configuration, each training stage's options, the GOP policy and the paper's ablations
+// (section 5.3): no decoupling (every Gaussian dynamic), no motion estimation (zero grids:
+// compensation alone follows the content), no compensation, a fixed GOP length, and the rate
+// term off (the grid trained for colour alone and coded with its histogram).
+#ifndef M4D_ENCODER_PIPELINE_ENCODER_OPTIONS_H_
+#define M4D_ENCODER_PIPELINE_ENCODER_OPTIONS_H_
+
+#include <cstdint>
+
+#include "compensation/compensation_candidates.h"
+#include "compensation/compensation_training.h"
+#include "decoupling/lookahead_decoupling.h"
+#include "layers/gaussian_set_writer.h"
+#include "layers/motion_config.h"
+#include "motion/motion_estimation.h"
+#include "train/keyframe_trainer.h"
+
+namespace m4d {
+
+struct AblationSwitches {
+  bool decoupling = true;         // off: every Gaussian of a keyframe is dynamic
+  bool motion_estimation = true;  // off: every motion grid is zero
+  bool compensation = true;       // off: no compensated Gaussians, nothing removed
+  bool rate_term = true;          // off: L_s2 = L_color
+};
+
+struct GopOptions {
+  bool adaptive = true;     // a new GOP when r_t = |dG_t| / |G_{t-1}^dyn| > threshold
+  float threshold = 0.15f;  // tau_GOP
+  int fixed_length = 0;     // frames per GOP when not adaptive (0: one GOP)
+  int max_length = 300;     // a keyframe at least this often, adaptive or not
+  int min_length = 2;       // adaptive GOPs are at least this long
+};
+
+struct EncoderOptions {
+  // Stream.
+  int sh_degree = 1;
+  GridConfig grid;  // the paper's: 4 x 32^3, 4 x 64^3, 2 x 128^3
+  MlpConfig mlp;    // one hidden layer of 64
+  float grid_steps[kMaxGridLevels] = {1.0f / 32, 1.0f / 32, 1.0f / 32, 1.0f / 32};
+  GaussianQuantization quantization;
+  int mlp_bits = 12;
+  uint32_t fps_num = 30, fps_den = 1;
+
+  // Frames [first_frame, first_frame + frame_count) of the capture (0: to its end).
+  int first_frame = 0;
+  int frame_count = 0;
+
+  // Stages.
+  KeyframeTrainingOptions keyframe = KeyframeTrainingOptions::Short();
+  // A new GOP's keyframe starts from the previous frame's state and trains this long (with
+  // densification over its first half).
+  int retrain_iterations = 1500;
+  int lookahead_frames = 30;  // t1 = keyframe + this, within the sequence (paper: about 30)
+  DecouplingOptions decoupling;
+  MotionEstimationOptions motion;
+  int first_motion_iterations = 400;  // the first inter frame of a GOP also trains the MLP
+  CompensationThresholds compensation_thresholds;
+  CompensationOptions compensation;
+  GopOptions gop;
+  AblationSwitches ablation;
+
+  float background[3] = {0, 0, 0};
+  int threads = 0;
+  uint64_t seed = 1;
+};
+
+// Checks the options that the stages do not check themselves.
+Status ValidateEncoderOptions(const EncoderOptions& options);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_PIPELINE_ENCODER_OPTIONS_H_

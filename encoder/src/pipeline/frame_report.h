@@ -1,0 +1,50 @@
+// FrameReport: what the encoder measured for one coded frame: its bytes per packet type (the
+// stream's bytes, headers included), Gaussian counts, held-out quality of the decoder's
+// reconstruction, and time per stage.
+#ifndef M4D_ENCODER_PIPELINE_FRAME_REPORT_H_
+#define M4D_ENCODER_PIPELINE_FRAME_REPORT_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stream/stream_writer.h"
+
+namespace m4d {
+
+struct StageSeconds {
+  double keyframe = 0;      // keyframe training or retraining
+  double decoupling = 0;    // lookahead fine-tuning and classification
+  double motion = 0;        // motion estimation
+  double compensation = 0;  // candidates and their training
+  double coding = 0;        // writing packets and decoding them (closed loop)
+  double evaluation = 0;    // held-out rendering
+  double total() const {
+    return keyframe + decoupling + motion + compensation + coding + evaluation;
+  }
+};
+
+struct FrameReport {
+  uint32_t frame_index = 0;
+  bool keyframe = false;
+  PacketBytes bytes;        // by packet type
+  size_t static_count = 0;  // Gaussians of the decoded frame
+  size_t dynamic_count = 0;
+  size_t added = 0;  // compensated Gaussians coded
+  size_t removed = 0;
+  double ratio = 0;  // r_t of the adaptive GOP (inter frames)
+  double psnr = 0;   // held-out camera, decoded frame (dB); 0 without a test camera
+  double ssim = 0;
+  std::string hash;  // frame hash (bitstream-spec 7) of the encoder's reconstruction
+  StageSeconds seconds;
+};
+
+struct SequenceReport {
+  std::vector<FrameReport> frames;
+  size_t stream_bytes = 0;  // the whole stream
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_PIPELINE_FRAME_REPORT_H_

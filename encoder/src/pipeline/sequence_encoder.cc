@@ -1,0 +1,408 @@
+#include "pipeline/sequence_encoder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "common/byte_reader.h"
+#include "common/byte_writer.h"
+#include "compensation/compensation_candidates.h"
+#include "compensation/compensation_training.h"
+#include "decode/frame_hash.h"
+#include "decode/motion_application.h"
+#include "decoupling/lookahead_decoupling.h"
+#include "layers/gaussian_set_writer.h"
+#include "layers/mlp_writer.h"
+#include "layers/motion_grid.h"
+#include "layers/motion_grid_writer.h"
+#include "train/gaussian_model.h"
+#include "train/keyframe_trainer.h"
+#include "train/scene_extent.h"
+#include "train/training_views.h"
+#include "train/view_evaluation.h"
+
+namespace m4d {
+
+struct SequenceEncoder::Gop {
+  int start = 0;
+  bool keyframe_pending = true;
+  GaussianSet static_coded, dynamic_coded;  // the keyframe's sets before quantization
+  GaussianSet static_set;                   // decoded, fixed for the GOP
+  GaussianSet dynamic_set;                  // decoded, of the last coded frame
+  GridBox box;
+  MlpWeights mlp;          // float, as trained (what the keyframe packet quantizes)
+  MlpWeights decoded_mlp;  // as the decoder reads it back
+  bool mlp_trained = false;
+  float scene_extent = 1.0f;
+  FrameReport keyframe_report;
+};
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames) {
+  StreamWriterOptions w;
+  w.sequence.sh_degree = o.sh_degree;
+  w.sequence.fps_num = o.fps_num;
+  w.sequence.fps_den = o.fps_den;
+  w.sequence.num_frames = static_cast<uint32_t>(frames);
+  w.sequence.grid = o.grid;
+  w.sequence.mlp = o.mlp;
+  w.quantization = o.quantization;
+  w.mlp_bits = o.mlp_bits;
+  return w;
+}
+
+// The MLP as a decoder reads it from the keyframe packet.
+Status DecodedMlp(const MlpWeights& mlp, const EncoderOptions& o, MlpWeights* decoded) {
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  M4D_RETURN_IF_ERROR(WriteMlpWeights(mlp, o.mlp_bits, &writer));
+  ByteReader reader(payload.data(), payload.size());
+  return ReadMlpWeights(&reader, o.grid.feature_count(), o.mlp, decoded);
+}
+
+// The rounded grid of a motion estimation, dense, in the writer's and the decoder's forms.
+void DenseGrids(const GridConfig& config, const float* steps, const MotionEstimationResult* motion,
+                const GridBox& box, FloatMotionGrid* coded, MotionGrid* decoded) {
+  for (int a = 0; a < 3; ++a) {
+    coded->box_min[a] = decoded->box_min[a] = box.min[a];
+    coded->box_scale[a] = decoded->box_scale[a] = box.scale[a];
+  }
+  for (int l = 0; l < kMaxGridLevels; ++l) {
+    coded->step[l] = decoded->step[l] = steps[l];
+    const size_t size = l < config.num_levels ? config.level_values(l) : 0;
+    coded->values[l].assign(size, 0.0f);
+    decoded->values[l].assign(size, 0);
+    decoded->nonzero_bricks[l].clear();
+    if (!motion || l >= config.num_levels) continue;
+    const int channels = config.channels[l];
+    const std::vector<uint32_t>& active = motion->stencil.active[l];
+    const std::vector<float>& values = motion->parameters.grid[l];
+    for (size_t v = 0; v < active.size(); ++v) {
+      for (int c = 0; c < channels; ++c) {
+        const float q = values[v * channels + c];
+        const size_t index = static_cast<size_t>(active[v]) * channels + c;
+        coded->values[l][index] = q * steps[l];
+        decoded->values[l][index] = static_cast<int16_t>(q);
+      }
+    }
+  }
+}
+
+bool SameSet(const GaussianSet& a, const GaussianSet& b) {
+  return a.sh_degree == b.sh_degree && a.positions == b.positions && a.log_scales == b.log_scales &&
+         a.rotations == b.rotations && a.opacity_logits == b.opacity_logits && a.sh == b.sh;
+}
+
+// A model of both sets, static first, at the stream's SH degree.
+Status CombinedModel(const GaussianSet& static_set, const GaussianSet& dynamic_set,
+                     GaussianModel* model) {
+  GaussianModel other;
+  M4D_RETURN_IF_ERROR(ModelFromGaussianSet(static_set, static_set.sh_degree, model));
+  M4D_RETURN_IF_ERROR(ModelFromGaussianSet(dynamic_set, static_set.sh_degree, &other));
+  for (int p = 0; p < kGaussianParameterCount; ++p) {
+    const auto param = static_cast<GaussianParameter>(p);
+    std::vector<float>& to = model->values(param);
+    const std::vector<float>& from = other.values(param);
+    to.insert(to.end(), from.begin(), from.end());
+  }
+  return Status::Ok();
+}
+
+Status EmptySet(int sh_degree, GaussianSet* set) {
+  *set = GaussianSet();
+  set->sh_degree = sh_degree;
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ValidateEncoderOptions(const EncoderOptions& o) {
+  auto bad = [](const char* what) {
+    return Status(M4D_ERR_INVALID_ARG, std::string("encoder options: ") + what);
+  };
+  if (o.sh_degree < 0 || o.sh_degree > 3) return bad("SH degree must be 0..3");
+  if (o.first_frame < 0 || o.frame_count < 0) return bad("negative frame range");
+  if (o.lookahead_frames < 1) return bad("lookahead must be at least one frame");
+  if (o.retrain_iterations < 1) return bad("retrain iterations must be positive");
+  if (o.first_motion_iterations < 0 || o.motion.iterations < 0) return bad("motion iterations");
+  if (o.gop.max_length < 1 || o.gop.min_length < 1 || o.gop.fixed_length < 0) {
+    return bad("GOP lengths");
+  }
+  if (!(o.gop.threshold >= 0.0f)) return bad("GOP threshold");
+  for (int l = 0; l < o.grid.num_levels; ++l) {
+    if (!(o.grid_steps[l] > 0.0f)) return bad("grid steps must be positive");
+  }
+  return ValidateTrainingOptions(o.keyframe);
+}
+
+SequenceEncoder::SequenceEncoder(const Capture& capture, const EncoderOptions& options)
+    : capture_(capture), options_(options) {}
+
+SequenceEncoder::~SequenceEncoder() = default;
+
+const std::vector<uint8_t>& SequenceEncoder::stream() const {
+  static const std::vector<uint8_t> kEmpty;
+  return writer_ ? writer_->bytes() : kEmpty;
+}
+
+Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport* report) {
+  M4D_RETURN_IF_ERROR(ValidateEncoderOptions(options_));
+  const int first = options_.first_frame;
+  if (first >= capture_.frame_count) {
+    return Status(M4D_ERR_INVALID_ARG, "encoder: first frame beyond the capture");
+  }
+  const int frames = options_.frame_count > 0
+                         ? std::min(options_.frame_count, capture_.frame_count - first)
+                         : capture_.frame_count - first;
+  last_frame_ = first + frames - 1;
+  callbacks_ = callbacks;
+  report_ = report;
+  *report = SequenceReport();
+  writer_ = std::make_unique<StreamWriter>(WriterOptions(options_, frames));
+  estimator_ = std::make_unique<MotionEstimator>(options_.grid, options_.mlp, options_.grid_steps);
+
+  const Clock::time_point start = Clock::now();
+  KeyframeTrainingOptions keyframe = options_.keyframe;
+  keyframe.sh_degree = options_.sh_degree;
+  keyframe.threads = options_.threads;
+  keyframe.seed = options_.seed;
+  std::copy(options_.background, options_.background + 3, keyframe.background);
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(TrainKeyframe(
+      capture_, first, keyframe,
+      [&](const TrainingProgress& p) {
+        if (callbacks_.training) callbacks_.training("keyframe", first, p);
+      },
+      &model));
+  M4D_RETURN_IF_ERROR(StartGop(first, std::move(model), Since(start)));
+  for (int t = first + 1; t <= last_frame_; ++t) {
+    bool restart = false;
+    M4D_RETURN_IF_ERROR(EncodeInterFrame(t, &restart));
+    if (restart) M4D_RETURN_IF_ERROR(Restart(t));
+  }
+  if (gop_->keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
+  report->stream_bytes = writer_->bytes().size();
+  return Status::Ok();
+}
+
+Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe_seconds) {
+  gop_ = std::make_unique<Gop>();
+  Gop& gop = *gop_;
+  gop.start = frame;
+  gop.keyframe_report.frame_index = static_cast<uint32_t>(frame);
+  gop.keyframe_report.keyframe = true;
+  gop.keyframe_report.seconds.keyframe = keyframe_seconds;
+
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
+  gop.scene_extent = CameraSceneBounds(views.cameras).extent;
+  const int t1 = std::min(frame + options_.lookahead_frames, last_frame_);
+  GaussianModel static_model, dynamic_model;
+  if (!options_.ablation.decoupling) {
+    dynamic_model = std::move(model);
+    static_model.sh_degree = dynamic_model.sh_degree;
+  } else if (t1 == frame) {
+    static_model = std::move(model);  // nothing follows: all of it is background
+    dynamic_model.sh_degree = static_model.sh_degree;
+  } else {
+    if (callbacks_.stage) callbacks_.stage("decoupling", frame);
+    const Clock::time_point start = Clock::now();
+    TrainingViews views_t1;
+    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, t1, capture_.TrainCameras(), &views_t1));
+    DecouplingOptions decoupling = options_.decoupling;
+    decoupling.threads = options_.threads;
+    decoupling.seed = options_.seed + static_cast<uint64_t>(frame);
+    std::copy(options_.background, options_.background + 3, decoupling.background);
+    DecouplingResult result;
+    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, views_t1, gop.scene_extent, decoupling, &result));
+    static_model = std::move(result.static_model);
+    dynamic_model = std::move(result.dynamic_model);
+    gop.keyframe_report.seconds.decoupling = Since(start);
+  }
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(static_model, options_.sh_degree, &gop.static_coded));
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(dynamic_model, options_.sh_degree, &gop.dynamic_coded));
+  M4D_RETURN_IF_ERROR(
+      ReconstructGaussianSet(gop.static_coded, options_.quantization, &gop.static_set));
+  M4D_RETURN_IF_ERROR(
+      ReconstructGaussianSet(gop.dynamic_coded, options_.quantization, &gop.dynamic_set));
+  gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
+  estimator_->StartGop(options_.seed + static_cast<uint64_t>(frame));
+  gop.mlp = estimator_->mlp();
+  return DecodedMlp(gop.mlp, options_, &gop.decoded_mlp);
+}
+
+Status SequenceEncoder::WriteKeyframe() {
+  Gop& gop = *gop_;
+  const Clock::time_point start = Clock::now();
+  DecodedFrame recon;
+  M4D_RETURN_IF_ERROR(writer_->WriteKeyframe(gop.static_coded, gop.dynamic_coded, gop.mlp, &recon));
+  if (!SameSet(*recon.static_layer, gop.static_set) ||
+      !SameSet(*recon.dynamic_layer, gop.dynamic_set)) {
+    return Status(M4D_ERR_BITSTREAM, "encoder: keyframe reconstruction differs from the decoder's");
+  }
+  gop.keyframe_pending = false;
+  FrameReport& report = gop.keyframe_report;
+  report.seconds.coding = Since(start);
+  report.bytes = writer_->last_frame_bytes();
+  report.hash = FrameHashHex(recon);
+  M4D_RETURN_IF_ERROR(Evaluate(gop.start, gop.static_set, gop.dynamic_set, &report));
+  report_->frames.push_back(report);
+  if (callbacks_.frame_coded) callbacks_.frame_coded(report);
+  return Status::Ok();
+}
+
+Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
+  Gop& gop = *gop_;
+  const int length = frame - gop.start;  // frames in the GOP so far
+  const bool fixed = !options_.gop.adaptive && options_.gop.fixed_length > 0;
+  if (length >= options_.gop.max_length || (fixed && length >= options_.gop.fixed_length)) {
+    *restart = true;
+    return Status::Ok();
+  }
+  FrameReport report;
+  report.frame_index = static_cast<uint32_t>(frame);
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
+
+  // Motion estimation, then the decoder's moved set.
+  Clock::time_point start = Clock::now();
+  const bool motion_on = options_.ablation.motion_estimation && gop.dynamic_set.size() > 0;
+  MotionEstimationResult motion;
+  if (motion_on) {
+    if (callbacks_.stage) callbacks_.stage("motion", frame);
+    MotionEstimationOptions o = options_.motion;
+    o.train_mlp = !gop.mlp_trained;
+    if (o.train_mlp) o.iterations = options_.first_motion_iterations;
+    o.rate_term = options_.ablation.rate_term && o.rate_term;
+    o.sh_degree = options_.sh_degree;
+    o.threads = options_.threads;
+    o.seed = options_.seed + 7919u * static_cast<uint64_t>(frame);
+    std::copy(options_.background, options_.background + 3, o.background);
+    M4D_RETURN_IF_ERROR(
+        estimator_->Estimate(views, gop.static_set, gop.dynamic_set, gop.box, o, &motion));
+    if (!gop.mlp_trained) {
+      gop.mlp = estimator_->mlp();
+      M4D_RETURN_IF_ERROR(DecodedMlp(gop.mlp, options_, &gop.decoded_mlp));
+      gop.mlp_trained = true;
+    }
+  }
+  FloatMotionGrid coded_grid;
+  MotionGrid decoded_grid;
+  DenseGrids(options_.grid, options_.grid_steps, motion_on ? &motion : nullptr, gop.box,
+             &coded_grid, &decoded_grid);
+  GaussianSet moved = gop.dynamic_set;
+  ApplyMotion(options_.grid, decoded_grid, gop.decoded_mlp, &moved);
+  report.seconds.motion = Since(start);
+
+  // Compensation.
+  start = Clock::now();
+  CompensationResult compensation;
+  compensation.removed.assign(moved.size(), 0);
+  M4D_RETURN_IF_ERROR(EmptySet(options_.sh_degree, &compensation.added));
+  if (options_.ablation.compensation) {
+    if (callbacks_.stage) callbacks_.stage("compensation", frame);
+    std::vector<float> gradient;
+    M4D_RETURN_IF_ERROR(MeasureViewspaceGradients(views, gop.static_set, moved, options_.sh_degree,
+                                                  options_.background, options_.threads,
+                                                  &gradient));
+    std::vector<float> outputs = motion_on ? motion.motion : std::vector<float>(7 * moved.size());
+    CompensationCandidates candidates =
+        ProposeCompensation(moved, gradient, outputs, options_.compensation_thresholds,
+                            static_cast<uint32_t>(options_.seed + frame));
+    CompensationOptions o = options_.compensation;
+    o.scene_extent = gop.scene_extent;
+    o.sh_degree = options_.sh_degree;
+    o.threads = options_.threads;
+    o.seed = options_.seed + 104729u * static_cast<uint64_t>(frame);
+    std::copy(options_.background, options_.background + 3, o.background);
+    M4D_RETURN_IF_ERROR(
+        TrainCompensation(views, gop.static_set, moved, candidates, o, &compensation));
+  }
+  report.seconds.compensation = Since(start);
+  report.added = compensation.added.size();
+  for (uint8_t r : compensation.removed) report.removed += r;
+  report.ratio = gop.dynamic_set.size() > 0 ? static_cast<double>(report.added) /
+                                                  static_cast<double>(gop.dynamic_set.size())
+                                            : 0.0;
+  if (options_.gop.adaptive && length >= options_.gop.min_length &&
+      report.ratio > options_.gop.threshold) {
+    *restart = true;  // frame becomes the next GOP's keyframe; nothing of it is written
+    return Status::Ok();
+  }
+
+  // Write: the keyframe first if its MLP was just trained, then this frame.
+  if (gop.keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
+  start = Clock::now();
+  M4D_RETURN_IF_ERROR(writer_->WriteMotion(coded_grid));
+  if (!SameSet(writer_->moved_dynamic_set(), moved)) {
+    return Status(M4D_ERR_BITSTREAM, "encoder: moved set differs from the decoder's");
+  }
+  DecodedFrame recon;
+  M4D_RETURN_IF_ERROR(writer_->WriteCompensation(compensation.removed, compensation.added, &recon));
+  report.seconds.coding = Since(start);
+  report.bytes = writer_->last_frame_bytes();
+  report.hash = FrameHashHex(recon);
+  gop.dynamic_set = *recon.dynamic_layer;
+  M4D_RETURN_IF_ERROR(Evaluate(frame, gop.static_set, gop.dynamic_set, &report));
+  report_->frames.push_back(report);
+  if (callbacks_.frame_coded) callbacks_.frame_coded(report);
+  return Status::Ok();
+}
+
+Status SequenceEncoder::Restart(int frame) {
+  if (gop_->keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
+  const Clock::time_point start = Clock::now();
+  // The new keyframe starts from the last decoded frame's whole state (paper section 3.5).
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(CombinedModel(gop_->static_set, gop_->dynamic_set, &model));
+  KeyframeTrainingOptions o = options_.keyframe;
+  o.iterations = options_.retrain_iterations;
+  o.learning_rates.position.max_steps = options_.retrain_iterations;
+  o.densify_from = std::min(o.densify_from, options_.retrain_iterations / 4);
+  o.densify_until = options_.retrain_iterations / 2;
+  o.opacity_reset_interval = 0;
+  o.sh_degree_interval = 0;
+  o.start_sh_degree = options_.sh_degree;
+  o.threads = options_.threads;
+  o.seed = options_.seed + static_cast<uint64_t>(frame);
+  std::copy(options_.background, options_.background + 3, o.background);
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
+  KeyframeTrainer trainer;
+  M4D_RETURN_IF_ERROR(trainer.Init(o, std::move(views), std::move(model)));
+  M4D_RETURN_IF_ERROR(trainer.Train([&](const TrainingProgress& p) {
+    if (callbacks_.training) callbacks_.training("retrain", frame, p);
+  }));
+  return StartGop(frame, trainer.TakeModel(), Since(start));
+}
+
+Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
+                                 const GaussianSet& dynamic_set, FrameReport* report) {
+  report->static_count = static_set.size();
+  report->dynamic_count = dynamic_set.size();
+  if (capture_.test_camera < 0) return Status::Ok();
+  const Clock::time_point start = Clock::now();
+  TrainingViews test;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, {capture_.test_camera}, &test));
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
+  RenderSettings settings;
+  settings.threads = options_.threads;
+  settings.sh_degree = options_.sh_degree;
+  std::copy(options_.background, options_.background + 3, settings.background);
+  EvaluationResult result;
+  M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &result));
+  report->psnr = result.mean_psnr;
+  report->ssim = result.mean_ssim;
+  report->seconds.evaluation = Since(start);
+  return Status::Ok();
+}
+
+}  // namespace m4d

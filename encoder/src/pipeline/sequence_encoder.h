@@ -1,0 +1,73 @@
+// SequenceEncoder: the reference encoder over a sequence (paper sections 3 to 5), closed loop.
+//
+// Per GOP: the keyframe model (trained from the capture's points for the first GOP, retrained
+// from the previous frame's decoded state for later ones) is decoupled into static and dynamic
+// sets by the lookahead. Per inter frame t: motion estimation moves frame t-1's *decoded*
+// dynamic set; compensation adds and removes Gaussians; the adaptive GOP rule either codes
+// the frame or starts a new GOP at t. Every packet is decoded by the SDK as it is written and
+// the next frame starts from that decode.
+//
+// The keyframe's packets carry the GOP's shared MLP, which the first inter frame trains, so a
+// keyframe is written just before its first inter frame. An inter frame is decided before any
+// of its packets is written: its moved set is computed with the SDK's own motion code on the
+// quantized grid and MLP, exactly what the decoder will compute (checked when written).
+#ifndef M4D_ENCODER_PIPELINE_SEQUENCE_ENCODER_H_
+#define M4D_ENCODER_PIPELINE_SEQUENCE_ENCODER_H_
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "dataset/capture.h"
+#include "motion/motion_estimation.h"
+#include "pipeline/encoder_options.h"
+#include "pipeline/frame_report.h"
+#include "stream/stream_writer.h"
+#include "train/progress_bar.h"
+
+namespace m4d {
+
+struct EncoderCallbacks {
+  // Progress of a keyframe (re)training; stage is "keyframe" or "retrain".
+  std::function<void(const std::string& stage, int frame, const TrainingProgress&)> training;
+  // A frame was coded (keyframes are reported when written, just before their first inter
+  // frame).
+  std::function<void(const FrameReport&)> frame_coded;
+  // A stage began: "decoupling", "motion", "compensation".
+  std::function<void(const std::string& stage, int frame)> stage;
+};
+
+class SequenceEncoder {
+ public:
+  SequenceEncoder(const Capture& capture, const EncoderOptions& options);
+  ~SequenceEncoder();
+
+  Status Encode(const EncoderCallbacks& callbacks, SequenceReport* report);
+
+  // The stream written so far.
+  const std::vector<uint8_t>& stream() const;
+
+ private:
+  struct Gop;
+  Status StartGop(int frame, GaussianModel model, double keyframe_seconds);
+  Status EncodeInterFrame(int frame, bool* restart);
+  Status WriteKeyframe();
+  Status Restart(int frame);
+  Status Evaluate(int frame, const GaussianSet& static_set, const GaussianSet& dynamic_set,
+                  FrameReport* report);
+
+  const Capture& capture_;
+  EncoderOptions options_;
+  EncoderCallbacks callbacks_;
+  SequenceReport* report_ = nullptr;
+  int last_frame_ = 0;
+  std::unique_ptr<StreamWriter> writer_;
+  std::unique_ptr<MotionEstimator> estimator_;
+  std::unique_ptr<Gop> gop_;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_PIPELINE_SEQUENCE_ENCODER_H_
