@@ -7,8 +7,8 @@
 // however faint it already is (a sum of opacities would stop pulling near zero), and only
 // the colour loss holds useful ones up. The norm becomes real by removing added Gaussians
 // whose opacity falls below a threshold (every prune_interval iterations and at the end) or
-// that no training view sees. Moved Gaussians that no training view sees any more are removed too, so the dynamic
-// set cannot grow without bound over a long GOP.
+// that no training view sees. Moved Gaussians that no training view sees any more are removed
+// too, so the dynamic set cannot grow without bound over a long GOP.
 #ifndef M4D_ENCODER_COMPENSATION_COMPENSATION_TRAINING_H_
 #define M4D_ENCODER_COMPENSATION_COMPENSATION_TRAINING_H_
 

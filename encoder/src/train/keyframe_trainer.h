@@ -56,7 +56,7 @@ struct KeyframeTrainingOptions {
   float opacity_reset_value = 0.01f;
   int sh_degree_interval = 1000;  // active SH degree + 1 every this many iterations (0: never)
   int start_sh_degree = 0;        // active at the start (the model's degree when retraining)
-  int sh_degree = 3;  // SH degree of a model TrainKeyframe initialises (0..3)
+  int sh_degree = 3;              // SH degree of a model TrainKeyframe initialises (0..3)
   double ssim_weight = kDefaultSsimWeight;
   float background[3] = {0.0f, 0.0f, 0.0f};
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
