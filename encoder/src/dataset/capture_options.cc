@@ -1,0 +1,98 @@
+#include "dataset/capture_options.h"
+
+#include <utility>
+
+#include "dataset/initial_points.h"
+#include "image/area_resize.h"
+
+namespace m4d {
+namespace {
+
+// Serves frame f of the window as frame first_frame + f of the full capture, area-averaged
+// by the downscale factor.
+class WindowedFrameSource : public FrameSource {
+ public:
+  WindowedFrameSource(std::unique_ptr<FrameSource> full, int first_frame, int downscale)
+      : full_(std::move(full)), first_frame_(first_frame), downscale_(downscale) {}
+
+  Status Load(int frame, int camera, Image* rgb) override {
+    if (downscale_ == 1) return full_->Load(first_frame_ + frame, camera, rgb);
+    Image image;
+    M4D_RETURN_IF_ERROR(full_->Load(first_frame_ + frame, camera, &image));
+    return ResizeArea(image, image.width / downscale_, image.height / downscale_, rgb);
+  }
+
+ private:
+  std::unique_ptr<FrameSource> full_;
+  int first_frame_;
+  int downscale_;
+};
+
+Status Downscale(int factor, Camera* camera) {
+  const int width = camera->width / factor, height = camera->height / factor;
+  if (width < 1 || height < 1) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "capture: downscale " + std::to_string(factor) + " leaves no pixels");
+  }
+  const double sx = static_cast<double>(width) / camera->width;
+  const double sy = static_cast<double>(height) / camera->height;
+  camera->fx = static_cast<float>(camera->fx * sx);
+  camera->cx = static_cast<float>(camera->cx * sx);
+  camera->fy = static_cast<float>(camera->fy * sy);
+  camera->cy = static_cast<float>(camera->cy * sy);
+  camera->width = width;
+  camera->height = height;
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status CheckCaptureOptions(const CaptureOptions& options) {
+  if (options.downscale < 1 || options.downscale > 64) {
+    return Status(M4D_ERR_INVALID_ARG, "capture: downscale must be 1..64");
+  }
+  if (options.first_frame < 0 || options.max_frames < 0 || options.test_camera < -1) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "capture: first_frame and max_frames must be >= 0, test_camera >= -1");
+  }
+  return Status::Ok();
+}
+
+Status ApplyCaptureOptions(const CaptureOptions& options, Capture* capture) {
+  M4D_RETURN_IF_ERROR(CheckCaptureOptions(options));
+  if (options.first_frame >= capture->frame_count) {
+    return Status(M4D_ERR_INVALID_ARG, "capture: first_frame " +
+                                           std::to_string(options.first_frame) + " but only " +
+                                           std::to_string(capture->frame_count) + " frames");
+  }
+  if (options.test_camera >= capture->camera_count()) {
+    return Status(M4D_ERR_INVALID_ARG, "capture: test camera " +
+                                           std::to_string(options.test_camera) + " but only " +
+                                           std::to_string(capture->camera_count()) + " cameras");
+  }
+  int count = capture->frame_count - options.first_frame;
+  if (options.max_frames > 0 && options.max_frames < count) count = options.max_frames;
+  capture->cameras.erase(capture->cameras.begin(), capture->cameras.begin() + options.first_frame);
+  capture->cameras.resize(count);
+  capture->frame_count = count;
+  for (std::vector<Camera>& row : capture->cameras) {
+    for (Camera& camera : row) {
+      if (options.downscale > 1) M4D_RETURN_IF_ERROR(Downscale(options.downscale, &camera));
+      const Status valid = ValidateCamera(camera);
+      if (!valid.ok()) {
+        return Status(M4D_ERR_INVALID_ARG, capture->layout + ": " + valid.message());
+      }
+    }
+  }
+  if (options.first_frame > 0 || options.downscale > 1) {
+    capture->frames = std::make_unique<WindowedFrameSource>(std::move(capture->frames),
+                                                            options.first_frame, options.downscale);
+  }
+  capture->test_camera = options.test_camera;
+  if (!options.initial_points.empty()) {
+    M4D_RETURN_IF_ERROR(LoadInitialPoints(options.initial_points, &capture->initial_points));
+  }
+  return Status::Ok();
+}
+
+}  // namespace m4d

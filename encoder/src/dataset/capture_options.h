@@ -1,0 +1,38 @@
+// CaptureOptions: the choices every capture loader applies the same way once it has read a
+// layout at full resolution: the frame window, integer downscaling, the held-out test
+// camera and an optional replacement of the initial points.
+#ifndef M4D_ENCODER_DATASET_CAPTURE_OPTIONS_H_
+#define M4D_ENCODER_DATASET_CAPTURE_OPTIONS_H_
+
+#include <string>
+
+#include "common/status.h"
+#include "dataset/capture.h"
+
+namespace m4d {
+
+struct CaptureOptions {
+  int test_camera = 0;  // held out (camera 0 by the N3DV convention); -1: none
+  // Integer factor: images are area-averaged to (width / downscale, height / downscale)
+  // (rounded down) and intrinsics scaled by the same ratio per axis, exactly 1 / downscale
+  // when the factor divides the size.
+  int downscale = 1;
+  int first_frame = 0;
+  int max_frames = 0;  // 0: every frame from first_frame on
+  // Initial points replacing the layout's own: a COLMAP sparse model directory (only its
+  // points3D is read) or a PLY point cloud, in the capture's world frame.
+  std::string initial_points;
+};
+
+// M4D_ERR_INVALID_ARG for negative values, downscale outside 1..64 or test_camera < -1.
+Status CheckCaptureOptions(const CaptureOptions& options);
+
+// Narrows a full-resolution capture to the frame window, downscales its cameras and wraps
+// its frame source to match, sets the test camera, replaces the initial points if asked
+// and validates every camera. M4D_ERR_INVALID_ARG when the window starts past the last
+// frame, the test camera does not exist or a camera is degenerate.
+Status ApplyCaptureOptions(const CaptureOptions& options, Capture* capture);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_DATASET_CAPTURE_OPTIONS_H_

@@ -1,0 +1,17 @@
+#include "dataset/initial_points.h"
+
+#include <filesystem>
+#include <system_error>
+
+#include "dataset/colmap_model.h"
+#include "ply/point_cloud_ply.h"
+
+namespace m4d {
+
+Status LoadInitialPoints(const std::string& path, PointCloud* points) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return ReadColmapPoints(path, points);
+  return ReadPointCloudPly(path, points);
+}
+
+}  // namespace m4d

@@ -1,0 +1,930 @@
+// Capture loaders (dataset/): N3DV, nerfstudio transforms.json, COLMAP and Dynamic 3D
+// Gaussians fixtures written here from one synthetic rig, layout detection, the capture
+// options (frame window, downscaling, test camera) and malformed layouts.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "dataset/capture_loader.h"
+#include "dataset/npy_array.h"
+#include "dataset_test_util.h"
+#include "image/area_resize.h"
+#include "image/file_bytes.h"
+#include "image/jpeg_io.h"
+#include "image/png_io.h"
+#include "metrics/psnr.h"
+#include "ply/point_cloud_ply.h"
+#include "video/video_writer.h"
+
+namespace m4d {
+namespace {
+
+using Json = nlohmann::json;
+using testing::ExpectSameCamera;
+using testing::MakeZip;
+using testing::Project;
+using testing::Rig;
+using testing::TempDir;
+using testing::ViewImage;
+using testing::ZipMethod;
+
+constexpr int kWidth = 64, kHeight = 48;
+
+void WriteText(const std::string& path, const std::string& text) {
+  ASSERT_TRUE(WriteFileBytes(path, std::vector<uint8_t>(text.begin(), text.end())).ok());
+}
+
+PointCloud SomePoints() {
+  PointCloud points;
+  for (int i = 0; i < 10; ++i) {
+    points.positions.insert(points.positions.end(), {0.1f * i, -0.2f * i, 0.05f * i - 0.3f});
+    points.colors.insert(points.colors.end(), {i / 10.0f, 0.5f, 1.0f - i / 20.0f});
+  }
+  return points;
+}
+
+void ExpectSamePoints(const PointCloud& a, const PointCloud& b, double colour_tolerance) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.positions.size(); ++i) {
+    EXPECT_NEAR(a.positions[i], b.positions[i], 1e-6) << i;
+    EXPECT_NEAR(a.colors[i], b.colors[i], colour_tolerance) << i;
+  }
+}
+
+// The image loaded for a view equals what the fixture wrote (exactly for PNG).
+void ExpectView(const Capture& capture, int frame, int camera, const Image& expected,
+                double min_psnr) {
+  Image image;
+  const Status status = capture.LoadImage(frame, camera, &image);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(image.width, expected.width);
+  ASSERT_EQ(image.height, expected.height);
+  ASSERT_EQ(image.channels, 3);
+  if (min_psnr == 0) {
+    EXPECT_EQ(image.pixels, expected.pixels) << "frame " << frame << " camera " << camera;
+  } else {
+    double psnr = 0;
+    ASSERT_TRUE(Psnr(image, expected, &psnr).ok());
+    EXPECT_GT(psnr, min_psnr) << "frame " << frame << " camera " << camera;
+  }
+}
+
+Status Load(const std::string& path, Capture* capture, CaptureOptions options = {}) {
+  return LoadCapture(path, options, capture);
+}
+
+// ---- COLMAP fixtures (also N3DV's initial points) ----------------------------------------
+
+// Unit quaternion (w, x, y, z) of a rotation matrix.
+void Quaternion(const float* r, double q[4]) {
+  const double trace = r[0] + r[4] + r[8];
+  if (trace > 0) {
+    const double s = 2 * std::sqrt(1 + trace);
+    q[0] = s / 4;
+    q[1] = (r[7] - r[5]) / s;
+    q[2] = (r[2] - r[6]) / s;
+    q[3] = (r[3] - r[1]) / s;
+  } else if (r[0] > r[4] && r[0] > r[8]) {
+    const double s = 2 * std::sqrt(1 + r[0] - r[4] - r[8]);
+    q[0] = (r[7] - r[5]) / s;
+    q[1] = s / 4;
+    q[2] = (r[1] + r[3]) / s;
+    q[3] = (r[2] + r[6]) / s;
+  } else if (r[4] > r[8]) {
+    const double s = 2 * std::sqrt(1 + r[4] - r[0] - r[8]);
+    q[0] = (r[2] - r[6]) / s;
+    q[1] = (r[1] + r[3]) / s;
+    q[2] = s / 4;
+    q[3] = (r[5] + r[7]) / s;
+  } else {
+    const double s = 2 * std::sqrt(1 + r[8] - r[0] - r[4]);
+    q[0] = (r[3] - r[1]) / s;
+    q[1] = (r[2] + r[6]) / s;
+    q[2] = (r[5] + r[7]) / s;
+    q[3] = s / 4;
+  }
+}
+
+struct ColmapCameraSpec {
+  int model_id;
+  std::vector<double> params;
+};
+
+// COLMAP parameters of a rig camera under a model (distortion terms as given).
+ColmapCameraSpec Spec(const Camera& c, const char* model, std::vector<double> distortion = {}) {
+  const std::string name = model;
+  ColmapCameraSpec spec;
+  std::vector<double> params;
+  if (name == "SIMPLE_PINHOLE" || name == "SIMPLE_RADIAL" || name == "RADIAL") {
+    params = {c.fx, c.cx, c.cy};
+  } else {
+    params = {c.fx, c.fy, c.cx, c.cy};
+  }
+  params.insert(params.end(), distortion.begin(), distortion.end());
+  const char* names[] = {"SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL",
+                         "RADIAL",         "OPENCV",  "OPENCV_FISHEYE"};
+  for (int id = 0; id < 6; ++id) {
+    if (name == names[id]) spec.model_id = id;
+  }
+  spec.params = params;
+  return spec;
+}
+
+const char* kModelNames[] = {"SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL",
+                             "RADIAL",         "OPENCV",  "OPENCV_FISHEYE"};
+
+void Put(const void* p, size_t n, std::vector<uint8_t>* out) {
+  const uint8_t* b = static_cast<const uint8_t*>(p);
+  out->insert(out->end(), b, b + n);
+}
+template <typename T>
+void Put(T v, std::vector<uint8_t>* out) {
+  Put(&v, sizeof(v), out);
+}
+
+// Writes the model (camera ids 10 + c, image ids 100 + c, images named "view_c.png" in
+// reverse order) as binary or text, and the images.
+void WriteColmap(const std::string& dir, const std::vector<Camera>& rig,
+                 const std::vector<ColmapCameraSpec>& specs, const PointCloud& points,
+                 bool binary) {
+  std::filesystem::create_directories(dir + "/sparse/0");
+  std::filesystem::create_directories(dir + "/images");
+  const std::string model = dir + "/sparse/0/";
+  std::vector<uint8_t> cameras, images, points3d;
+  std::string cameras_txt = "# Camera list\n", images_txt = "# Image list\n#\n",
+              points_txt = "# 3D point list\n";
+  Put<uint64_t>(rig.size(), &cameras);
+  Put<uint64_t>(rig.size(), &images);
+  Put<uint64_t>(points.size(), &points3d);
+  char line[512];
+  for (int c = static_cast<int>(rig.size()) - 1; c >= 0; --c) {
+    const Camera& camera = rig[c];
+    Put<int32_t>(10 + c, &cameras);
+    Put<int32_t>(specs[c].model_id, &cameras);
+    Put<uint64_t>(camera.width, &cameras);
+    Put<uint64_t>(camera.height, &cameras);
+    std::snprintf(line, sizeof(line), "%d %s %d %d", 10 + c, kModelNames[specs[c].model_id],
+                  camera.width, camera.height);
+    cameras_txt += line;
+    for (double p : specs[c].params) {
+      Put(p, &cameras);
+      std::snprintf(line, sizeof(line), " %.17g", p);
+      cameras_txt += line;
+    }
+    cameras_txt += "\n";
+
+    double q[4];
+    Quaternion(camera.rotation, q);
+    const std::string name = "view_" + std::to_string(c) + ".png";
+    Put<int32_t>(100 + c, &images);
+    for (double v : q) Put(v, &images);
+    for (float t : camera.translation) Put<double>(t, &images);
+    Put<int32_t>(10 + c, &images);
+    Put(name.c_str(), name.size() + 1, &images);
+    Put<uint64_t>(2, &images);  // two 2D points, unused
+    for (int i = 0; i < 2; ++i) {
+      Put<double>(1.5 * i, &images);
+      Put<double>(2.5, &images);
+      Put<int64_t>(i == 0 ? -1 : 7, &images);
+    }
+    std::snprintf(line, sizeof(line), "%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g %d %s\n",
+                  100 + c, q[0], q[1], q[2], q[3], static_cast<double>(camera.translation[0]),
+                  static_cast<double>(camera.translation[1]),
+                  static_cast<double>(camera.translation[2]), 10 + c, name.c_str());
+    images_txt += line;
+    images_txt += c % 2 ? "0 2.5 -1 1.5 2.5 7\n" : "\n";  // 2D points (possibly none)
+    ASSERT_TRUE(
+        WritePng(dir + "/images/" + name, ViewImage(camera.width, camera.height, 0, c)).ok());
+  }
+  for (size_t i = 0; i < points.size(); ++i) {
+    Put<uint64_t>(i + 1, &points3d);
+    uint8_t rgb[3];
+    for (int a = 0; a < 3; ++a) {
+      Put<double>(points.positions[3 * i + a], &points3d);
+      rgb[a] = FloatToByte(points.colors[3 * i + a]);
+    }
+    Put(rgb, 3, &points3d);
+    Put<double>(0.5, &points3d);
+    Put<uint64_t>(1, &points3d);
+    Put<int32_t>(100, &points3d);
+    Put<int32_t>(0, &points3d);
+    std::snprintf(line, sizeof(line), "%zu %.17g %.17g %.17g %d %d %d 0.5 100 0\n", i + 1,
+                  static_cast<double>(points.positions[3 * i]),
+                  static_cast<double>(points.positions[3 * i + 1]),
+                  static_cast<double>(points.positions[3 * i + 2]), rgb[0], rgb[1], rgb[2]);
+    points_txt += line;
+  }
+  if (binary) {
+    ASSERT_TRUE(WriteFileBytes(model + "cameras.bin", cameras).ok());
+    ASSERT_TRUE(WriteFileBytes(model + "images.bin", images).ok());
+    ASSERT_TRUE(WriteFileBytes(model + "points3D.bin", points3d).ok());
+  } else {
+    WriteText(model + "cameras.txt", cameras_txt);
+    WriteText(model + "images.txt", images_txt);
+    WriteText(model + "points3D.txt", points_txt);
+  }
+}
+
+std::vector<ColmapCameraSpec> MixedSpecs(std::vector<Camera>* rig) {
+  (*rig)[1].fy = (*rig)[1].fx;  // the one-focal-length models
+  (*rig)[3].fy = (*rig)[3].fx;
+  return {Spec((*rig)[0], "PINHOLE"), Spec((*rig)[1], "SIMPLE_PINHOLE"),
+          Spec((*rig)[2], "OPENCV", {0.01, -0.002, 0.0, 0.0}),
+          Spec((*rig)[3], "SIMPLE_RADIAL", {0})};
+}
+
+// ---- N3DV -----------------------------------------------------------------------------
+
+enum class N3dvFrames { kVideos, kCameraImages, kFramesDir };
+
+// poses_bounds row of a camera, recorded at twice the image size (W = 2 width, f = 2 fx) as
+// the original N3DV videos are larger than the training images.
+std::vector<double> PosesRow(const Camera& camera) {
+  const float* r = camera.rotation;
+  float centre[3];
+  CameraCentre(camera, centre);
+  // LLFF columns (down, right, back) are OpenCV's y, x and -z axes in world coordinates,
+  // i.e. rows 1, 0 and -2 of the world-to-camera rotation.
+  const double columns[4][3] = {{r[3], r[4], r[5]},
+                                {r[0], r[1], r[2]},
+                                {-r[6], -r[7], -r[8]},
+                                {centre[0], centre[1], centre[2]}};
+  const double hwf[3] = {2.0 * camera.height, 2.0 * camera.width, 2.0 * camera.fx};
+  std::vector<double> row;
+  for (int i = 0; i < 3; ++i) {
+    for (int c = 0; c < 4; ++c) row.push_back(columns[c][i]);
+    row.push_back(hwf[i]);
+  }
+  row.insert(row.end(), {0.5, 20.0});
+  return row;
+}
+
+void WritePoses(const std::string& dir, const std::vector<std::vector<double>>& rows) {
+  std::vector<double> values;
+  for (const auto& row : rows) values.insert(values.end(), row.begin(), row.end());
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(EncodeNpy({rows.size(), 17}, values, &bytes).ok());
+  ASSERT_TRUE(WriteFileBytes(dir + "/poses_bounds.npy", bytes).ok());
+}
+
+void WriteN3dv(const TempDir& dir, const std::vector<Camera>& rig, int frames, N3dvFrames mode) {
+  std::vector<std::vector<double>> rows;
+  for (const Camera& camera : rig) rows.push_back(PosesRow(camera));
+  WritePoses(dir.path(), rows);
+  for (size_t c = 0; c < rig.size(); ++c) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "cam%02d", static_cast<int>(c));
+    if (mode == N3dvFrames::kVideos) {
+      std::unique_ptr<VideoWriter> writer;
+      ASSERT_TRUE(VideoWriter::Open(dir.path() + "/" + name + ".mp4", kWidth, kHeight,
+                                    VideoWriterOptions(), &writer)
+                      .ok());
+      for (int f = 0; f < frames; ++f) {
+        ASSERT_TRUE(writer->Write(ViewImage(kWidth, kHeight, f, static_cast<int>(c))).ok());
+      }
+      ASSERT_TRUE(writer->Finish().ok());
+      continue;
+    }
+    const std::string images = mode == N3dvFrames::kCameraImages
+                                   ? dir.Subdir(std::string(name) + "/images")
+                                   : dir.Subdir(std::string("frames/") + name);
+    for (int f = 0; f < frames; ++f) {
+      char file[32];
+      std::snprintf(file, sizeof(file), "/%04d.png", f);
+      ASSERT_TRUE(WritePng(images + file, ViewImage(kWidth, kHeight, f, static_cast<int>(c))).ok());
+    }
+  }
+}
+
+TEST(N3dvLoaderTest, DecodesVideos) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(2, kWidth, kHeight, true);
+  WriteN3dv(dir, rig, 5, N3dvFrames::kVideos);
+  Capture capture;
+  const Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(capture.layout, "n3dv");
+  EXPECT_EQ(capture.frame_count, 5);
+  EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"cam00", "cam01"}));
+  EXPECT_EQ(capture.test_camera, 0);
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{1}));
+  for (int f = 0; f < 5; ++f) {
+    for (int c = 0; c < 2; ++c) ExpectSameCamera(capture.camera(f, c), rig[c], 1e-5);
+  }
+  // Out of order, as training asks: every view decodes to its own frame.
+  for (int f : {3, 0, 4, 1}) {
+    for (int c : {1, 0}) ExpectView(capture, f, c, ViewImage(kWidth, kHeight, f, c), 30);
+  }
+  Image image;
+  EXPECT_EQ(capture.LoadImage(5, 0, &image).code(), M4D_ERR_INVALID_ARG);
+
+  CaptureOptions window;
+  window.first_frame = 2;
+  window.max_frames = 2;
+  ASSERT_TRUE(Load(dir.path(), &capture, window).ok());
+  EXPECT_EQ(capture.frame_count, 2);
+  ExpectView(capture, 1, 1, ViewImage(kWidth, kHeight, 3, 1), 30);
+}
+
+TEST(N3dvLoaderTest, ReadsExtractedFrames) {
+  for (N3dvFrames mode : {N3dvFrames::kCameraImages, N3dvFrames::kFramesDir}) {
+    TempDir dir;
+    const std::vector<Camera> rig = Rig(3, kWidth, kHeight, true);
+    WriteN3dv(dir, rig, 4, mode);
+    // COLMAP run on frame 0 in the same world frame gives the initial points.
+    WriteColmap(dir.path(), rig,
+                {Spec(rig[0], "PINHOLE"), Spec(rig[1], "PINHOLE"), Spec(rig[2], "PINHOLE")},
+                SomePoints(), mode == N3dvFrames::kFramesDir);
+    CaptureOptions options;
+    options.first_frame = 1;
+    Capture capture;
+    const Status status = Load(dir.path(), &capture, options);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(capture.frame_count, 3);
+    EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"cam00", "cam01", "cam02"}));
+    for (int c = 0; c < 3; ++c) ExpectSameCamera(capture.camera(2, c), rig[c], 1e-5);
+    ExpectView(capture, 0, 2, ViewImage(kWidth, kHeight, 1, 2), 0);
+    ExpectView(capture, 2, 0, ViewImage(kWidth, kHeight, 3, 0), 0);
+    ExpectSamePoints(capture.initial_points, SomePoints(), 0.5 / 255 + 1e-6);
+  }
+}
+
+TEST(N3dvLoaderTest, ProjectsAKnownPointWhereExpected) {
+  TempDir dir;
+  // A camera at (1, 2, 4) looking down -z with +y up: LLFF down = (0, -1, 0),
+  // right = (1, 0, 0), back = (0, 0, 1); recorded at 128 x 96 with f = 100.
+  const std::vector<double> row = {0, 1, 0, 1, 96, -1, 0, 0, 2, 128, 0, 0, 1, 4, 100, 0.1, 10};
+  WritePoses(dir.path(), {row});
+  const std::string images = dir.Subdir("cam00/images");
+  ASSERT_TRUE(WritePng(images + "/0000.png", ViewImage(kWidth, kHeight, 0, 0)).ok());
+  CaptureOptions options;
+  options.test_camera = -1;
+  Capture capture;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  const Camera& camera = capture.camera(0, 0);
+  EXPECT_FLOAT_EQ(camera.fx, 50.0f);  // 100 * 64 / 128
+  EXPECT_FLOAT_EQ(camera.cx, 32.0f);
+  // (1.5, 1, 0) is 0.5 right, 1 below and 4 in front of the camera.
+  const double point[3] = {1.5, 1.0, 0.0};
+  double u, v;
+  Project(camera, point, &u, &v);
+  EXPECT_NEAR(u, 50.0 * 0.5 / 4 + 32, 1e-4);
+  EXPECT_NEAR(v, 50.0 * 1.0 / 4 + 24, 1e-4);
+}
+
+TEST(N3dvLoaderTest, RejectsMismatchedLayouts) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(2, kWidth, kHeight, true);
+  WriteN3dv(dir, rig, 2, N3dvFrames::kCameraImages);
+  // Three poses for two cameras.
+  WritePoses(dir.path(), {PosesRow(rig[0]), PosesRow(rig[1]), PosesRow(rig[1])});
+  Capture capture;
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_INVALID_ARG);
+  // Cameras with different frame counts: the shortest wins, with a note.
+  WritePoses(dir.path(), {PosesRow(rig[0]), PosesRow(rig[1])});
+  std::filesystem::remove(dir.path() + "/cam01/images/0001.png");
+  ASSERT_TRUE(Load(dir.path(), &capture).ok());
+  EXPECT_EQ(capture.frame_count, 1);
+  ASSERT_EQ(capture.notes.size(), 1u);
+  // Each camera's size is its first image's.
+  ASSERT_TRUE(WritePng(dir.path() + "/cam01/images/0000.png", Image(8, 6, 3)).ok());
+  ASSERT_TRUE(Load(dir.path(), &capture).ok());
+  EXPECT_EQ(capture.camera(0, 1).width, 8);
+  EXPECT_FLOAT_EQ(capture.camera(0, 1).fx, rig[1].fx * 8 / kWidth);
+  WriteText(dir.path() + "/poses_bounds.npy", "not numpy");
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_UNSUPPORTED);
+}
+
+// ---- nerfstudio transforms.json ---------------------------------------------------------
+
+// Camera-to-world with OpenGL axes (x right, y up, z back) as nerfstudio stores it.
+Json TransformMatrix(const Camera& camera) {
+  const float* r = camera.rotation;
+  float centre[3];
+  CameraCentre(camera, centre);
+  Json matrix = Json::array();
+  const double sign[3] = {1, -1, -1};
+  for (int i = 0; i < 3; ++i) {
+    matrix.push_back({sign[0] * r[0 + i], sign[1] * r[3 + i], sign[2] * r[6 + i], centre[i]});
+  }
+  matrix.push_back({0, 0, 0, 1});
+  return matrix;
+}
+
+Json FrameEntry(const Camera& camera, const std::string& file) {
+  Json entry = {{"file_path", file}, {"transform_matrix", TransformMatrix(camera)},
+                {"fl_x", camera.fx}, {"fl_y", camera.fy},
+                {"cx", camera.cx},   {"cy", camera.cy}};
+  return entry;
+}
+
+// A multi-view video: frames[t][c] with "camera" and "time_index" (or only "time" when
+// `by_time`), listed in a shuffled order; images and points written beside it.
+Json WriteDynamicTransforms(const TempDir& dir, const std::vector<Camera>& rig, int frames,
+                            bool by_time) {
+  Json root = {
+      {"camera_model", "OPENCV"}, {"w", kWidth}, {"h", kHeight}, {"ply_file_path", "points3d.ply"}};
+  std::vector<Json> entries;
+  for (int t = 0; t < frames; ++t) {
+    for (size_t c = 0; c < rig.size(); ++c) {
+      char file[64];
+      std::snprintf(file, sizeof(file), "images/cam%02d/%06d.png", static_cast<int>(c), t);
+      dir.Subdir("images/cam" + std::string(file + 10, 2));
+      EXPECT_TRUE(
+          WritePng(dir.path() + "/" + file, ViewImage(kWidth, kHeight, t, static_cast<int>(c)))
+              .ok());
+      Json entry = FrameEntry(rig[c], std::string("./") + file);
+      entry["time"] = frames > 1 ? static_cast<double>(t) / (frames - 1) : 0.0;
+      if (!by_time) {
+        entry["camera"] = "cam" + std::string(file + 10, 2);
+        entry["time_index"] = t;
+      }
+      entries.push_back(entry);
+    }
+  }
+  std::reverse(entries.begin(), entries.end());
+  std::rotate(entries.begin(), entries.begin() + 2, entries.end());
+  root["frames"] = entries;
+  EXPECT_TRUE(WritePointCloudPly(dir.path() + "/points3d.ply", SomePoints()).ok());
+  WriteText(dir.path() + "/transforms.json", root.dump(1));
+  return root;
+}
+
+TEST(NerfstudioLoaderTest, LoadsMultiViewVideo) {
+  for (bool by_time : {false, true}) {
+    TempDir dir;
+    const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+    WriteDynamicTransforms(dir, rig, 3, by_time);
+    Capture capture;
+    const Status status = Load(dir.path(), &capture);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(capture.layout, "nerfstudio");
+    EXPECT_EQ(capture.frame_count, 3);
+    if (by_time) {  // grouped by transform, named after their first view
+      EXPECT_EQ(capture.camera_names[1], "images/cam01/000000.png");
+    } else {
+      EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"cam00", "cam01", "cam02"}));
+    }
+    for (int f = 0; f < 3; ++f) {
+      for (int c = 0; c < 3; ++c) {
+        ExpectSameCamera(capture.camera(f, c), rig[c], 1e-5);
+        ExpectView(capture, f, c, ViewImage(kWidth, kHeight, f, c), 0);
+      }
+    }
+    ExpectSamePoints(capture.initial_points, SomePoints(), 0.5 / 255 + 1e-6);
+    EXPECT_TRUE(capture.notes.empty());
+  }
+}
+
+TEST(NerfstudioLoaderTest, LoadsStaticCapturesWithIntrinsicsOverride) {
+  TempDir dir;
+  std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+  // The second view overrides the shared intrinsics, image size included.
+  rig[1].width = 40;
+  rig[1].height = 30;
+  rig[1].fx = 33;
+  rig[1].fy = 34;
+  rig[1].cx = 21;
+  rig[1].cy = 14;
+  Json root = {{"w", kWidth},     {"h", kHeight},    {"fl_x", rig[0].fx}, {"fl_y", rig[0].fy},
+               {"cx", rig[0].cx}, {"cy", rig[0].cy}, {"k1", 0.01}};
+  dir.Subdir("images");
+  for (int c = 0; c < 3; ++c) {
+    const std::string file = "images/view_" + std::to_string(c) + ".png";
+    ASSERT_TRUE(
+        WritePng(dir.path() + "/" + file, ViewImage(rig[c].width, rig[c].height, 0, c)).ok());
+    Json entry = {{"file_path", file}, {"transform_matrix", TransformMatrix(rig[c])}};
+    if (c == 1) {
+      entry.update(FrameEntry(rig[1], file));
+      entry["w"] = 40;
+      entry["h"] = 30;
+    }
+    if (c == 2) {  // a camera sharing camera 0's intrinsics would differ here
+      rig[2].fx = rig[0].fx;
+      rig[2].fy = rig[0].fy;
+      rig[2].cx = rig[0].cx;
+      rig[2].cy = rig[0].cy;
+    }
+    root["frames"].push_back(entry);
+  }
+  WriteText(dir.path() + "/transforms.json", root.dump());
+  Capture capture;
+  CaptureOptions options;
+  options.test_camera = -1;
+  const Status status = Load(dir.path() + "/transforms.json", &capture, options);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(capture.frame_count, 1);
+  EXPECT_EQ(capture.camera_names[2], "images/view_2.png");
+  for (int c = 0; c < 3; ++c) ExpectSameCamera(capture.camera(0, c), rig[c], 1e-5);
+  ExpectView(capture, 0, 1, ViewImage(40, 30, 0, 1), 0);
+  EXPECT_EQ(capture.notes.size(), 1u);  // k1 ignored
+  EXPECT_TRUE(capture.initial_points.positions.empty());
+}
+
+TEST(NerfstudioLoaderTest, RejectsIncompleteAndMalformedFiles) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(2, kWidth, kHeight, false);
+  const Json root = WriteDynamicTransforms(dir, rig, 2, false);
+  const std::string path = dir.path() + "/transforms.json";
+  Capture capture;
+  auto load_with = [&](const Json& json) {
+    WriteText(path, json.dump());
+    return Load(dir.path(), &capture);
+  };
+  Json missing = root;
+  missing["frames"].erase(missing["frames"].begin() + 1);
+  Status status = load_with(missing);
+  EXPECT_EQ(status.code(), M4D_ERR_INVALID_ARG);
+  EXPECT_NE(status.message().find("no view"), std::string::npos) << status.message();
+  Json doubled = root;
+  doubled["frames"][0]["camera"] = doubled["frames"][1]["camera"];
+  doubled["frames"][0]["time_index"] = doubled["frames"][1]["time_index"];
+  status = load_with(doubled);
+  EXPECT_EQ(status.code(), M4D_ERR_INVALID_ARG);
+  EXPECT_NE(status.message().find("two views"), std::string::npos) << status.message();
+  Json mixed = root;
+  mixed["frames"][0].erase("camera");
+  EXPECT_EQ(load_with(mixed).code(), M4D_ERR_INVALID_ARG);
+  Json no_pose = root;
+  no_pose["frames"][2].erase("transform_matrix");
+  EXPECT_EQ(load_with(no_pose).code(), M4D_ERR_INVALID_ARG);
+  Json bad_matrix = root;
+  bad_matrix["frames"][2]["transform_matrix"][1] = "x";
+  EXPECT_EQ(load_with(bad_matrix).code(), M4D_ERR_INVALID_ARG);
+  Json not_rigid = root;
+  not_rigid["frames"][2]["transform_matrix"][0][0] = 3.0;
+  EXPECT_EQ(load_with(not_rigid).code(), M4D_ERR_INVALID_ARG);
+  Json fisheye = root;
+  fisheye["camera_model"] = "OPENCV_FISHEYE";
+  EXPECT_EQ(load_with(fisheye).code(), M4D_ERR_UNSUPPORTED);
+  Json no_width = root;
+  no_width.erase("w");
+  EXPECT_EQ(load_with(no_width).code(), M4D_ERR_INVALID_ARG);
+  Json wrong_type = root;
+  wrong_type["frames"] = "all of them";
+  EXPECT_EQ(load_with(wrong_type).code(), M4D_ERR_INVALID_ARG);
+  WriteText(path, "{\"frames\": [");
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_INVALID_ARG);
+  // A view whose image is missing loads, then fails on that view only.
+  ASSERT_TRUE(load_with(root).ok());
+  std::filesystem::remove(dir.path() + "/images/cam01/000001.png");
+  Image image;
+  EXPECT_EQ(capture.LoadImage(1, 1, &image).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_TRUE(capture.LoadImage(1, 0, &image).ok());
+}
+
+// ---- COLMAP tests ----------------------------------------------------------------------
+
+TEST(ColmapLoaderTest, BinaryAndTextGiveTheSameCapture) {
+  TempDir dir;
+  std::vector<Camera> rig = Rig(4, kWidth, kHeight, false);
+  const std::vector<ColmapCameraSpec> specs = MixedSpecs(&rig);
+  const PointCloud points = SomePoints();
+  WriteColmap(dir.Subdir("bin"), rig, specs, points, true);
+  WriteColmap(dir.Subdir("txt"), rig, specs, points, false);
+  Capture binary, text;
+  Status status = Load(dir.path() + "/bin", &binary);
+  ASSERT_TRUE(status.ok()) << status.message();
+  status = Load(dir.path() + "/txt", &text);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(binary.layout, "colmap");
+  EXPECT_EQ(binary.frame_count, 1);
+  const std::vector<std::string> names = {"view_0.png", "view_1.png", "view_2.png", "view_3.png"};
+  EXPECT_EQ(binary.camera_names, names);
+  EXPECT_EQ(text.camera_names, names);
+  for (int c = 0; c < 4; ++c) {
+    ExpectSameCamera(binary.camera(0, c), text.camera(0, c), 0);
+    ExpectSameCamera(binary.camera(0, c), rig[c], 1e-5);
+    ExpectView(binary, 0, c, ViewImage(kWidth, kHeight, 0, c), 0);
+  }
+  EXPECT_EQ(binary.initial_points.positions, text.initial_points.positions);
+  EXPECT_EQ(binary.initial_points.colors, text.initial_points.colors);
+  ExpectSamePoints(binary.initial_points, points, 0.5 / 255 + 1e-6);
+  // OPENCV's distortion is dropped with a note; SIMPLE_RADIAL's k = 0 needs none.
+  ASSERT_EQ(binary.notes.size(), 1u);
+  EXPECT_NE(binary.notes[0].find("distortion"), std::string::npos);
+  EXPECT_EQ(text.notes, binary.notes);
+}
+
+TEST(ColmapLoaderTest, RejectsUnsupportedModelsAndBrokenFiles) {
+  TempDir dir;
+  std::vector<Camera> rig = Rig(2, kWidth, kHeight, false);
+  rig[1].fy = rig[1].fx;
+  WriteColmap(dir.path(), rig,
+              {Spec(rig[0], "PINHOLE"), Spec(rig[1], "OPENCV_FISHEYE", {0, 0, 0, 0})}, SomePoints(),
+              true);
+  Capture capture;
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_UNSUPPORTED);
+  WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "RADIAL", {0, 0})},
+              SomePoints(), true);
+  ASSERT_TRUE(Load(dir.path(), &capture).ok());
+  const std::string model = dir.path() + "/sparse/0/";
+  for (const char* file : {"cameras.bin", "images.bin", "points3D.bin"}) {
+    std::vector<uint8_t> bytes, cut;
+    ASSERT_TRUE(ReadFileBytes(model + file, 1 << 20, &bytes).ok());
+    for (size_t size : {size_t{0}, size_t{7}, bytes.size() / 2, bytes.size() - 1}) {
+      cut.assign(bytes.begin(), bytes.begin() + size);
+      ASSERT_TRUE(WriteFileBytes(model + file, cut).ok());
+      EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM) << file << " " << size;
+    }
+    bytes.push_back(0);  // trailing bytes are malformed as well
+    ASSERT_TRUE(WriteFileBytes(model + file, bytes).ok());
+    EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM) << file;
+    bytes.pop_back();
+    ASSERT_TRUE(WriteFileBytes(model + file, bytes).ok());
+  }
+  // A huge count is refused from the file size, before allocating.
+  std::vector<uint8_t> huge;
+  Put<uint64_t>(uint64_t{1} << 60, &huge);
+  ASSERT_TRUE(WriteFileBytes(model + "points3D.bin", huge).ok());
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM);
+  std::filesystem::remove(model + "points3D.bin");
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_INVALID_ARG);  // no points3D at all
+  // Text: an unknown model, a short line.
+  TempDir text;
+  WriteColmap(text.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "PINHOLE")}, SomePoints(),
+              false);
+  const std::string cameras = text.path() + "/sparse/0/cameras.txt";
+  WriteText(cameras, "1 PINHOLE 64 48 50 50 32\n");
+  EXPECT_EQ(Load(text.path(), &capture).code(), M4D_ERR_BITSTREAM);
+  WriteText(cameras, "1 WEIRD 64 48 50 50 32 24\n");
+  EXPECT_EQ(Load(text.path(), &capture).code(), M4D_ERR_BITSTREAM);
+  // Images whose camera is missing.
+  WriteText(cameras, "# nothing\n");
+  EXPECT_EQ(Load(text.path(), &capture).code(), M4D_ERR_INVALID_ARG);
+}
+
+// ---- Dynamic 3D Gaussians -------------------------------------------------------------------
+
+// cam_id values 4, 0, 2 for the rig's cameras 2, 0, 1 (listed in a different order each
+// frame), JPEG images, points in init_pt_cld.npz written with `method`.
+void WriteDynamic3dgs(const std::string& dir, const std::vector<Camera>& rig, int frames,
+                      ZipMethod method) {
+  const int ids[3] = {0, 2, 4};
+  Json root = {{"w", kWidth}, {"h", kHeight}};
+  for (const char* key : {"k", "w2c", "fn", "cam_id"}) root[key] = Json::array();
+  for (int t = 0; t < frames; ++t) {
+    Json k = Json::array(), w2c = Json::array(), fn = Json::array(), cam_id = Json::array();
+    for (int i = 0; i < 3; ++i) {
+      const int c = (i + t + 2) % 3;
+      const Camera& camera = rig[c];
+      k.push_back(
+          Json::array({Json::array({camera.fx, 0.0, camera.cx}),
+                       Json::array({0.0, camera.fy, camera.cy}), Json::array({0.0, 0.0, 1.0})}));
+      const float* r = camera.rotation;
+      const float* tr = camera.translation;
+      w2c.push_back(Json::array(
+          {Json::array({r[0], r[1], r[2], tr[0]}), Json::array({r[3], r[4], r[5], tr[1]}),
+           Json::array({r[6], r[7], r[8], tr[2]}), Json::array({0, 0, 0, 1})}));
+      const std::string file = std::to_string(ids[c]) + "/" + std::to_string(t) + ".jpg";
+      std::filesystem::create_directories(dir + "/ims/" + std::to_string(ids[c]));
+      EXPECT_TRUE(WriteJpeg(dir + "/ims/" + file, ViewImage(kWidth, kHeight, t, c), 95).ok());
+      fn.push_back(file);
+      cam_id.push_back(ids[c]);
+    }
+    root["k"].push_back(k);
+    root["w2c"].push_back(w2c);
+    root["fn"].push_back(fn);
+    root["cam_id"].push_back(cam_id);
+  }
+  WriteText(dir + "/train_meta.json", root.dump());
+  const PointCloud points = SomePoints();
+  std::vector<double> data;
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int a = 0; a < 3; ++a) data.push_back(points.positions[3 * i + a]);
+    for (int a = 0; a < 3; ++a) data.push_back(points.colors[3 * i + a]);
+    data.push_back(1.0);  // segmentation label
+  }
+  std::vector<uint8_t> npy;
+  ASSERT_TRUE(EncodeNpy({points.size(), 7}, data, &npy).ok());
+  ASSERT_TRUE(WriteFileBytes(dir + "/init_pt_cld.npz", MakeZip({{"data.npy", npy}}, method)).ok());
+}
+
+TEST(Dynamic3dgsLoaderTest, LoadsMetaImagesAndPoints) {
+  for (ZipMethod method : {ZipMethod::kStored, ZipMethod::kDeflated}) {
+    TempDir dir;
+    const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+    WriteDynamic3dgs(dir.path(), rig, 2, method);
+    Capture capture;
+    const Status status = Load(dir.path(), &capture);
+    ASSERT_TRUE(status.ok()) << status.message();
+    EXPECT_EQ(capture.layout, "dynamic3dgs");
+    EXPECT_EQ(capture.frame_count, 2);
+    EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"0", "2", "4"}));
+    for (int f = 0; f < 2; ++f) {
+      for (int c = 0; c < 3; ++c) {
+        ExpectSameCamera(capture.camera(f, c), rig[c], 1e-6);
+        ExpectView(capture, f, c, ViewImage(kWidth, kHeight, f, c), 30);
+      }
+    }
+    ExpectSamePoints(capture.initial_points, SomePoints(), 1e-7);
+  }
+}
+
+TEST(Dynamic3dgsLoaderTest, RejectsInconsistentMeta) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+  WriteDynamic3dgs(dir.path(), rig, 2, ZipMethod::kDeflated);
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(ReadFileBytes(dir.path() + "/train_meta.json", 1 << 24, &bytes).ok());
+  const Json root = Json::parse(bytes.begin(), bytes.end());
+  Capture capture;
+  auto load_with = [&](const Json& json) {
+    WriteText(dir.path() + "/train_meta.json", json.dump());
+    return Load(dir.path(), &capture).code();
+  };
+  Json other_cameras = root;
+  other_cameras["cam_id"][1][0] = 9;
+  EXPECT_EQ(load_with(other_cameras), M4D_ERR_INVALID_ARG);
+  Json short_k = root;
+  short_k["k"][1].erase(0);
+  EXPECT_EQ(load_with(short_k), M4D_ERR_INVALID_ARG);
+  Json bad_w2c = root;
+  bad_w2c["w2c"][0][0][1] = Json::array({1, 2});
+  EXPECT_EQ(load_with(bad_w2c), M4D_ERR_INVALID_ARG);
+  Json text_size = root;
+  text_size["w"] = "wide";
+  EXPECT_EQ(load_with(text_size), M4D_ERR_INVALID_ARG);
+  ASSERT_EQ(load_with(root), M4D_OK);
+  std::vector<uint8_t> npz;
+  ASSERT_TRUE(ReadFileBytes(dir.path() + "/init_pt_cld.npz", 1 << 20, &npz).ok());
+  npz.resize(npz.size() / 2);
+  ASSERT_TRUE(WriteFileBytes(dir.path() + "/init_pt_cld.npz", npz).ok());
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM);
+}
+
+// ---- Options and detection ------------------------------------------------------------------
+
+TEST(CaptureOptionsTest, DownscaleScalesImagesAndIntrinsicsTogether) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(2, kWidth, kHeight, false);
+  WriteDynamicTransforms(dir, rig, 2, false);
+  Capture full, half, third;
+  ASSERT_TRUE(Load(dir.path(), &full).ok());
+  CaptureOptions options;
+  options.downscale = 2;
+  ASSERT_TRUE(Load(dir.path(), &half, options).ok());
+  options.downscale = 3;
+  ASSERT_TRUE(Load(dir.path(), &third, options).ok());
+  const double point[3] = {0.3, -0.2, 0.4};
+  for (int c = 0; c < 2; ++c) {
+    const Camera& a = full.camera(1, c);
+    const Camera& b = half.camera(1, c);
+    EXPECT_EQ(b.width, kWidth / 2);
+    EXPECT_EQ(b.height, kHeight / 2);
+    EXPECT_FLOAT_EQ(b.fx, a.fx / 2);
+    EXPECT_FLOAT_EQ(b.cy, a.cy / 2);
+    double u, v, u2, v2, u3, v3;
+    Project(a, point, &u, &v);
+    Project(b, point, &u2, &v2);
+    EXPECT_NEAR(u2, u / 2, 1e-4);
+    EXPECT_NEAR(v2, v / 2, 1e-4);
+    // 64 x 48 by 3 is 21 x 16: each axis scales by its own ratio, as the image does.
+    const Camera& t = third.camera(1, c);
+    EXPECT_EQ(t.width, 21);
+    EXPECT_EQ(t.height, 16);
+    Project(t, point, &u3, &v3);
+    EXPECT_NEAR(u3, u * 21 / 64, 1e-4);
+    EXPECT_NEAR(v3, v * 16 / 48, 1e-4);
+
+    Image full_image, expected;
+    ASSERT_TRUE(full.LoadImage(1, c, &full_image).ok());
+    ASSERT_TRUE(ResizeArea(full_image, kWidth / 2, kHeight / 2, &expected).ok());
+    ExpectView(half, 1, c, expected, 0);
+    ASSERT_TRUE(ResizeArea(full_image, 21, 16, &expected).ok());
+    ExpectView(third, 1, c, expected, 0);
+  }
+}
+
+TEST(CaptureOptionsTest, TestCameraAndFrameWindow) {
+  TempDir dir;
+  WriteDynamicTransforms(dir, Rig(3, kWidth, kHeight, false), 3, false);
+  Capture capture;
+  ASSERT_TRUE(Load(dir.path(), &capture).ok());
+  EXPECT_EQ(capture.test_camera, 0);
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{1, 2}));
+  CaptureOptions options;
+  options.test_camera = -1;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{0, 1, 2}));
+  options.test_camera = 2;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{0, 1}));
+  options.test_camera = 3;
+  EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+  options = CaptureOptions();
+  options.first_frame = 2;
+  options.max_frames = 5;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_EQ(capture.frame_count, 1);
+  ExpectView(capture, 0, 1, ViewImage(kWidth, kHeight, 2, 1), 0);
+  options.first_frame = 3;
+  EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+  for (int bad : {0, 65}) {
+    options = CaptureOptions();
+    options.downscale = bad;
+    EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+  }
+  options = CaptureOptions();
+  options.downscale = 64;  // 64 x 48 has no rows left
+  EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+  options = CaptureOptions();
+  options.max_frames = -1;
+  EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+}
+
+TEST(CaptureOptionsTest, InitialPointsOverride) {
+  TempDir dir;
+  std::vector<Camera> rig = Rig(4, kWidth, kHeight, false);
+  const std::vector<ColmapCameraSpec> specs = MixedSpecs(&rig);
+  WriteColmap(dir.Subdir("colmap"), rig, specs, SomePoints(), false);
+  WriteDynamicTransforms(dir, Rig(2, kWidth, kHeight, false), 1, false);
+  PointCloud other;
+  other.positions = {9, 8, 7};
+  other.colors = {1, 0, 0};
+  ASSERT_TRUE(WritePointCloudPly(dir.path() + "/other.ply", other).ok());
+  CaptureOptions options;
+  options.initial_points = dir.path() + "/other.ply";
+  Capture capture;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_EQ(capture.initial_points.positions, other.positions);
+  options.initial_points = dir.path() + "/colmap/sparse/0";
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  ExpectSamePoints(capture.initial_points, SomePoints(), 0.5 / 255 + 1e-6);
+  options.initial_points = dir.path() + "/none.ply";
+  EXPECT_EQ(Load(dir.path(), &capture, options).code(), M4D_ERR_INVALID_ARG);
+}
+
+TEST(CaptureLoaderTest, DetectsLayouts) {
+  TempDir dir;
+  std::string layout;
+  EXPECT_EQ(DetectCaptureLayout(dir.path(), &layout).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(DetectCaptureLayout(dir.path() + "/missing", &layout).code(), M4D_ERR_INVALID_ARG);
+  std::vector<Camera> rig = Rig(4, kWidth, kHeight, false);
+  WriteColmap(dir.path(), rig, MixedSpecs(&rig), SomePoints(), true);
+  ASSERT_TRUE(DetectCaptureLayout(dir.path(), &layout).ok());
+  EXPECT_EQ(layout, "colmap");
+  WriteText(dir.path() + "/train_meta.json", "{}");
+  ASSERT_TRUE(DetectCaptureLayout(dir.path(), &layout).ok());
+  EXPECT_EQ(layout, "dynamic3dgs");
+  WriteText(dir.path() + "/poses_bounds.npy", "");
+  ASSERT_TRUE(DetectCaptureLayout(dir.path(), &layout).ok());
+  EXPECT_EQ(layout, "n3dv");
+  WriteText(dir.path() + "/transforms.json", "{}");
+  ASSERT_TRUE(DetectCaptureLayout(dir.path(), &layout).ok());
+  EXPECT_EQ(layout, "nerfstudio");
+  Capture capture;
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_INVALID_ARG);  // no frames
+}
+
+// The same rig written in every layout gives the same cameras.
+TEST(CaptureLoaderTest, SameRigAcrossLayouts) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(3, kWidth, kHeight, true);  // what N3DV can express
+  const std::string nerfstudio = dir.Subdir("nerfstudio"), colmap = dir.Subdir("colmap"),
+                    n3dv = dir.Subdir("n3dv"), d3dgs = dir.Subdir("d3dgs");
+  Json json = {{"w", kWidth}, {"h", kHeight}};
+  for (int c = 0; c < 3; ++c) {
+    const std::string file = "v" + std::to_string(c) + ".png";
+    ASSERT_TRUE(WritePng(nerfstudio + "/" + file, ViewImage(kWidth, kHeight, 0, c)).ok());
+    json["frames"].push_back(FrameEntry(rig[c], file));
+  }
+  WriteText(nerfstudio + "/transforms.json", json.dump());
+  WriteColmap(colmap, rig,
+              {Spec(rig[0], "PINHOLE"), Spec(rig[1], "SIMPLE_PINHOLE"), Spec(rig[2], "PINHOLE")},
+              SomePoints(), true);
+  std::vector<std::vector<double>> rows;
+  for (const Camera& camera : rig) rows.push_back(PosesRow(camera));
+  WritePoses(n3dv, rows);
+  for (int c = 0; c < 3; ++c) {
+    const std::string images = n3dv + "/cam0" + std::to_string(c) + "/images";
+    std::filesystem::create_directories(images);
+    ASSERT_TRUE(WritePng(images + "/0000.png", ViewImage(kWidth, kHeight, 0, c)).ok());
+  }
+  WriteDynamic3dgs(d3dgs, rig, 1, ZipMethod::kStored);
+  std::vector<Capture> captures(4);
+  const std::string dirs[4] = {nerfstudio, colmap, n3dv, d3dgs};
+  for (int i = 0; i < 4; ++i) {
+    const Status status = Load(dirs[i], &captures[i]);
+    ASSERT_TRUE(status.ok()) << dirs[i] << ": " << status.message();
+    ASSERT_EQ(captures[i].camera_count(), 3) << dirs[i];
+    for (int c = 0; c < 3; ++c) {
+      ExpectSameCamera(captures[i].camera(0, c), captures[0].camera(0, c), 1e-5);
+      ExpectSameCamera(captures[i].camera(0, c), rig[c], 1e-5);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace m4d
