@@ -1,0 +1,34 @@
+// Writing a fixed-rig multi-view capture's transforms.json (nerfstudio's layout with the
+// "camera" and "time_index" extensions; the layout is described in
+// encoder/src/synthetic_scene/README.md).
+#ifndef M4D_ENCODER_DATASET_TRANSFORMS_JSON_WRITER_H_
+#define M4D_ENCODER_DATASET_TRANSFORMS_JSON_WRITER_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "render/camera.h"
+
+namespace m4d {
+
+struct TransformsJsonRig {
+  std::vector<Camera> cameras;            // the same every frame
+  std::vector<std::string> camera_names;  // one per camera
+  int frame_count = 0;
+  // The image of (frame, camera), relative to the transforms.json directory.
+  std::function<std::string(int frame, int camera)> image_path;
+  std::string ply_file_path;  // empty: no "ply_file_path"
+};
+
+// The JSON text: shared intrinsics from camera 0 (entries whose camera differs carry their
+// own), one entry per (frame, camera) in frame-major order with camera-to-world matrices in
+// OpenGL axes. M4D_ERR_INVALID_ARG for an empty rig, mismatched names or an invalid camera.
+Status TransformsJsonText(const TransformsJsonRig& rig, std::string* text);
+
+Status WriteTransformsJson(const std::string& path, const TransformsJsonRig& rig);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_DATASET_TRANSFORMS_JSON_WRITER_H_

@@ -1,0 +1,136 @@
+#include "synthetic_scene/scene_writer.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <memory>
+#include <system_error>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dataset/point_cloud_ply.h"
+#include "dataset/transforms_json_writer.h"
+#include "image/byte_samples.h"
+#include "image/file_bytes.h"
+#include "image/png_io.h"
+#include "synthetic_scene/synthetic_scene.h"
+
+namespace m4d {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr char kPlyName[] = "points3d.ply";
+
+Status MakeDirectories(const std::string& path) {
+  std::error_code error;
+  std::filesystem::create_directories(path, error);
+  if (error) {
+    return Status(M4D_ERR_INVALID_ARG, "cannot create directory " + path + ": " + error.message());
+  }
+  return Status::Ok();
+}
+
+// Writes one frame's views (RGB bytes, one per camera) as PNGs.
+Status WriteFramePngs(const std::string& root, const std::vector<std::string>& names, int frame,
+                      int width, int height, const std::vector<std::vector<uint8_t>>& views) {
+  Image image(width, height, 3);
+  for (size_t c = 0; c < views.size(); ++c) {
+    for (size_t i = 0; i < views[c].size(); ++i) image.pixels[i] = ByteToFloat(views[c][i]);
+    M4D_RETURN_IF_ERROR(WritePng(root + "/" + SyntheticImagePath(names[c], frame), image));
+  }
+  return Status::Ok();
+}
+
+// What the scene holds and when things happen, for tools and tests that need to know.
+std::string SceneJsonText(const SyntheticScene& scene) {
+  const SyntheticSceneOptions& o = scene.options();
+  Json json;
+  json["generator"] = "m4d synthetic scene";
+  json["format_version"] = 1;
+  json["cameras"] = o.cameras;
+  json["width"] = o.width;
+  json["height"] = o.height;
+  json["frames"] = o.frames;
+  json["horizontal_fov_degrees"] = o.horizontal_fov_degrees;
+  json["test_camera"] = o.cameras > 1 ? 0 : -1;  // held out from training
+  json["seed"] = o.seed;
+  json["points"] = o.points;
+  json["supersample"] = o.supersample;
+  json["msaa_samples"] = o.msaa_samples;
+  json["emergent_frame"] = o.emergent_frame;
+  json["background_change_frame"] =
+      o.background_change_frame >= 0 ? Json(o.background_change_frame) : Json(nullptr);
+  Json events = Json::array();
+  events.push_back(
+      {{"frame", o.emergent_frame}, {"kind", "object_appears"}, {"object", "emergent_ball"}});
+  if (o.background_change_frame >= 0) {
+    events.push_back({{"frame", o.background_change_frame},
+                      {"kind", "lamp_light_changes"},
+                      {"object", "lamp_shade"}});
+  }
+  json["events"] = std::move(events);
+  Json objects = Json::array();
+  for (const SceneObject& object : scene.content().objects) {
+    objects.push_back({{"name", object.name},
+                       {"motion", ObjectMotionName(object.motion)},
+                       {"triangles", object.mesh.triangle_count()}});
+  }
+  json["objects"] = std::move(objects);
+  return json.dump(2) + "\n";
+}
+
+Status WriteText(const std::string& path, const std::string& text) {
+  return WriteFileBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+}  // namespace
+
+std::string SyntheticImagePath(const std::string& camera_name, int frame) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "%06d.png", frame);
+  return "images/" + camera_name + "/" + name;
+}
+
+Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::string& dir,
+                           const SceneProgress& progress) {
+  std::unique_ptr<SyntheticScene> scene;
+  M4D_RETURN_IF_ERROR(SyntheticScene::Create(options, &scene));
+  const std::string root = dir.empty() ? std::string(".") : dir;
+  const std::vector<std::string>& names = scene->camera_names();
+  for (const std::string& name : names) {
+    M4D_RETURN_IF_ERROR(MakeDirectories(root + "/images/" + name));
+  }
+  // PNG compression of one frame runs on a second thread while GL renders the next; two
+  // sets of view buffers alternate between the two.
+  std::vector<std::vector<uint8_t>> views[2];
+  views[0].resize(options.cameras);
+  views[1].resize(options.cameras);
+  std::future<Status> writing;  // declared after views: destroyed (waited for) first
+  for (int f = 0; f < options.frames; ++f) {
+    std::vector<std::vector<uint8_t>>& frame_views = views[f & 1];
+    for (int c = 0; c < options.cameras; ++c) {
+      M4D_RETURN_IF_ERROR(scene->RenderView(f, c, &frame_views[c]));
+    }
+    if (writing.valid()) M4D_RETURN_IF_ERROR(writing.get());
+    writing = std::async(std::launch::async, WriteFramePngs, root, std::cref(names), f,
+                         options.width, options.height, std::cref(frame_views));
+    if (progress) progress(f + 1, options.frames);
+  }
+  M4D_RETURN_IF_ERROR(writing.get());
+  M4D_RETURN_IF_ERROR(WritePointCloudPly(root + "/" + kPlyName, scene->InitialPoints()));
+  TransformsJsonRig rig;
+  rig.cameras = scene->cameras();
+  rig.camera_names = names;
+  rig.frame_count = options.frames;
+  rig.image_path = [&names](int frame, int camera) {
+    return SyntheticImagePath(names[camera], frame);
+  };
+  rig.ply_file_path = kPlyName;
+  M4D_RETURN_IF_ERROR(WriteTransformsJson(root + "/transforms.json", rig));
+  return WriteText(root + "/scene.json", SceneJsonText(*scene));
+}
+
+}  // namespace m4d

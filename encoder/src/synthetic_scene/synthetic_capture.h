@@ -1,0 +1,26 @@
+// The synthetic scene straight into a Capture, without files: every view is rendered up
+// front and kept as 8-bit RGB in memory (the same bytes the PNGs of WriteSyntheticScene
+// hold), with the rig's cameras, camera 0 held out and the initial point cloud.
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
+
+#include <cstddef>
+
+#include "common/status.h"
+#include "dataset/capture.h"
+#include "synthetic_scene/scene_writer.h"
+#include "synthetic_scene/synthetic_scene_options.h"
+
+namespace m4d {
+
+// Most bytes of images the in-memory capture holds; larger scenes go through files.
+constexpr size_t kMaxSyntheticCaptureBytes = size_t{1} << 30;
+
+// Errors as WriteSyntheticScene's, and M4D_ERR_LIMIT when the images would exceed
+// kMaxSyntheticCaptureBytes.
+Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* capture,
+                                const SceneProgress& progress = nullptr);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_

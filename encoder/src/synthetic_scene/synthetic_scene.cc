@@ -1,0 +1,39 @@
+#include "synthetic_scene/synthetic_scene.h"
+
+#include "synthetic_scene/camera_rig.h"
+#include "synthetic_scene/scene_animation.h"
+#include "synthetic_scene/scene_random.h"
+#include "synthetic_scene/surface_point_sampler.h"
+
+namespace m4d {
+
+Status SyntheticScene::Create(const SyntheticSceneOptions& options,
+                              std::unique_ptr<SyntheticScene>* scene) {
+  M4D_RETURN_IF_ERROR(ValidateSyntheticSceneOptions(options));
+  std::unique_ptr<SyntheticScene> created(new SyntheticScene());
+  created->options_ = options;
+  created->options_.emergent_frame = EmergentFrame(options);
+  created->cameras_ = MakeCameraRig(options);
+  created->camera_names_ = CameraNames(options.cameras);
+  created->content_ = BuildSceneContent(options.seed);
+  M4D_RETURN_IF_ERROR(SceneRenderer::Create(created->content_, options.width, options.height,
+                                            options.supersample, options.msaa_samples,
+                                            &created->renderer_));
+  *scene = std::move(created);
+  return Status::Ok();
+}
+
+Status SyntheticScene::RenderView(int frame, int camera, std::vector<uint8_t>* rgb) {
+  if (frame < 0 || frame >= options_.frames || camera < 0 || camera >= options_.cameras) {
+    return Status(M4D_ERR_INVALID_ARG, "synthetic scene: view (frame " + std::to_string(frame) +
+                                           ", camera " + std::to_string(camera) + ") out of range");
+  }
+  return renderer_->Render(SceneStateAt(content_, options_, frame), cameras_[camera], rgb);
+}
+
+PointCloud SyntheticScene::InitialPoints() const {
+  return SampleSurfacePoints(content_, SceneStateAt(content_, options_, 0), options_.points,
+                             MixBits(options_.seed * 7919 + 11));
+}
+
+}  // namespace m4d

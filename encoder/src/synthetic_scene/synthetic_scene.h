@@ -1,0 +1,56 @@
+// SyntheticScene: the project's built-in multi-view dynamic scene, ready to render: a
+// textured room with furniture, a walking and waving figure, a spinning cube, a ball that
+// appears mid-sequence and a lamp that may change colour, seen by a front-facing rig (see
+// README.md in this directory). Rendering uses a headless OpenGL ES context on the thread
+// that created the scene.
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "dataset/point_cloud.h"
+#include "render/camera.h"
+#include "synthetic_scene/scene_content.h"
+#include "synthetic_scene/scene_renderer.h"
+#include "synthetic_scene/synthetic_scene_options.h"
+
+namespace m4d {
+
+class SyntheticScene {
+ public:
+  // Validates the options, builds the content and the renderer. Errors: bad options
+  // (M4D_ERR_INVALID_ARG, M4D_ERR_LIMIT), no GL (M4D_ERR_UNSUPPORTED).
+  static Status Create(const SyntheticSceneOptions& options,
+                       std::unique_ptr<SyntheticScene>* scene);
+
+  // The options with the emergent frame resolved.
+  const SyntheticSceneOptions& options() const { return options_; }
+  const std::vector<Camera>& cameras() const { return cameras_; }
+  const std::vector<std::string>& camera_names() const { return camera_names_; }
+  const SceneContent& content() const { return content_; }
+  const std::string& renderer_description() const { return renderer_->description(); }
+
+  // Renders view (frame, camera): width * height * 3 bytes of RGB, row 0 at the top. Same
+  // options, same bytes.
+  Status RenderView(int frame, int camera, std::vector<uint8_t>* rgb);
+
+  // options.points points on the surfaces present at frame 0, where they are then.
+  PointCloud InitialPoints() const;
+
+ private:
+  SyntheticScene() = default;
+
+  SyntheticSceneOptions options_;
+  std::vector<Camera> cameras_;
+  std::vector<std::string> camera_names_;
+  SceneContent content_;
+  std::unique_ptr<SceneRenderer> renderer_;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_

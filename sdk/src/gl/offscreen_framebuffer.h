@@ -1,0 +1,55 @@
+// OffscreenFramebuffer: a framebuffer object with RGBA8 colour and 24-bit depth
+// renderbuffers, multisampled on request, that a headless context renders into, and the
+// read-back of its pixels (multisampling resolved, top row first).
+#ifndef M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
+#define M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/status.h"
+#include "gl/gl_functions.h"
+
+namespace m4d {
+
+class OffscreenFramebuffer {
+ public:
+  // Creates the buffers in the current context, whose function table `gl` must outlive the
+  // framebuffer. samples <= 1: no multisampling; larger values are capped at GL_MAX_SAMPLES.
+  // M4D_ERR_INVALID_ARG for a size outside 1..GL_MAX_RENDERBUFFER_SIZE, M4D_ERR_UNSUPPORTED
+  // when the driver rejects the framebuffer.
+  static Status Create(const GlFunctions& gl, int width, int height, int samples,
+                       std::unique_ptr<OffscreenFramebuffer>* framebuffer);
+  // Deletes the GL objects: the context must be current.
+  ~OffscreenFramebuffer();
+  OffscreenFramebuffer(const OffscreenFramebuffer&) = delete;
+  OffscreenFramebuffer& operator=(const OffscreenFramebuffer&) = delete;
+
+  // Binds for drawing and sets the viewport to the whole framebuffer.
+  void Bind();
+  // Waits for rendering and reads width * height RGBA pixels, row 0 at the top.
+  Status ReadRgba8(std::vector<uint8_t>* rgba);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int samples() const { return samples_; }
+
+ private:
+  explicit OffscreenFramebuffer(const GlFunctions& gl) : gl_(gl) {}
+  Status Initialize(int width, int height, int samples);
+  Status CreateTarget(int samples, GLuint* framebuffer, GLuint renderbuffers[2]);
+
+  const GlFunctions& gl_;
+  int width_ = 0;
+  int height_ = 0;
+  int samples_ = 0;
+  GLuint draw_framebuffer_ = 0;  // rendered into; multisampled when samples_ > 1
+  GLuint draw_renderbuffers_[2] = {0, 0};
+  GLuint resolve_framebuffer_ = 0;  // single-sample copy to read from, when multisampled
+  GLuint resolve_renderbuffers_[2] = {0, 0};
+};
+
+}  // namespace m4d
+
+#endif  // M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
