@@ -15,10 +15,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/point_cloud_ply.h"
 #include "image/byte_samples.h"
 #include "image/file_bytes.h"
 #include "image/png_io.h"
+#include "ply/point_cloud_ply.h"
 #include "synthetic_scene/camera_rig.h"
 #include "synthetic_scene/scene_animation.h"
 #include "synthetic_scene/scene_writer.h"

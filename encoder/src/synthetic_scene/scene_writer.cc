@@ -10,11 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/point_cloud_ply.h"
 #include "dataset/transforms_json_writer.h"
 #include "image/byte_samples.h"
 #include "image/file_bytes.h"
 #include "image/png_io.h"
+#include "ply/point_cloud_ply.h"
 #include "synthetic_scene/synthetic_scene.h"
 
 namespace m4d {

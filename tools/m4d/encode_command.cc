@@ -1,0 +1,143 @@
+#include "encode_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "command_status.h"
+#include "pipeline/sequence_encoder.h"
+#include "sequence_report_output.h"
+#include "train/progress_bar.h"
+
+namespace m4d {
+
+Status RatePointLambda(const std::string& name, double* lambda) {
+  static const char* kNames[] = {"r1", "r2", "r3", "r4", "r5"};
+  static const double kLambdas[] = {5e-4, 3e-4, 2e-4, 1e-4, 5e-5};
+  for (int i = 0; i < 5; ++i) {
+    if (name == kNames[i]) {
+      *lambda = kLambdas[i];
+      return Status::Ok();
+    }
+  }
+  return Status(M4D_ERR_INVALID_ARG, "unknown rate point '" + name + "' (r1..r5)");
+}
+
+void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
+  EncoderOptions& o = a->encoder;
+  cmd->add_option("--lambda", o.motion.rate_weight, "rate weight lambda_2 of motion estimation")
+      ->capture_default_str();
+  cmd->add_option("--rate-point", a->rate_point,
+                  "named rate point r1 (smallest) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, 1e-4, 5e-5");
+  cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
+      ->check(CLI::Range(0, 3))
+      ->capture_default_str();
+  cmd->add_option("--keyframe-iterations", o.keyframe.iterations, "first keyframe's training")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--lookahead", o.lookahead_frames, "frames from a keyframe to t1")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--motion-iterations", o.motion.iterations, "motion estimation per frame")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--compensation-iterations", o.compensation.iterations,
+                  "compensation training per frame")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
+      ->capture_default_str();
+  cmd->add_option("--fixed-gop", o.gop.fixed_length,
+                  "fixed GOP of this many frames instead of the adaptive GOP");
+  cmd->add_option("--max-gop", o.gop.max_length, "longest GOP")->capture_default_str();
+  cmd->add_flag(
+      "--no-decoupling", [&o](int64_t) { o.ablation.decoupling = false; },
+      "ablation: every Gaussian dynamic");
+  cmd->add_flag(
+      "--no-motion", [&o](int64_t) { o.ablation.motion_estimation = false; },
+      "ablation: no motion estimation (zero grids)");
+  cmd->add_flag(
+      "--no-compensation", [&o](int64_t) { o.ablation.compensation = false; },
+      "ablation: no Gaussian compensation");
+  cmd->add_flag(
+      "--no-rate", [&o](int64_t) { o.ablation.rate_term = false; },
+      "ablation: motion trained without the rate term");
+  cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
+}
+
+Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
+  EncoderOptions options = args.encoder;
+  if (!args.rate_point.empty()) {
+    M4D_RETURN_IF_ERROR(RatePointLambda(args.rate_point, &options.motion.rate_weight));
+  }
+  if (options.gop.fixed_length > 0) options.gop.adaptive = false;
+  Capture capture;
+  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+
+  ProgressBar bar;
+  bool header = true;
+  EncoderCallbacks callbacks;
+  callbacks.training = [&](const std::string& stage, int frame, const TrainingProgress& p) {
+    if (p.iteration == 0) return;
+    std::fprintf(stderr, "\r%s %d ", stage.c_str(), frame);
+    bar.Update(p);
+    if (p.iteration == p.iterations) bar.Finish();
+  };
+  callbacks.stage = [](const std::string& stage, int frame) {
+    std::fprintf(stderr, "\r  frame %d: %-14s", frame, stage.c_str());
+    std::fflush(stderr);
+  };
+  callbacks.frame_coded = [&](const FrameReport& f) {
+    std::fprintf(stderr, "\r%40s\r", "");
+    PrintFrameLine(stdout, f, header);
+    header = false;
+  };
+  SequenceEncoder encoder(capture, options);
+  M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, report));
+  PrintSummary(stdout, *report);
+
+  std::error_code ec;
+  const std::filesystem::path parent = std::filesystem::path(args.output).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  std::ofstream file(args.output, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(encoder.stream().data()),
+             static_cast<std::streamsize>(encoder.stream().size()));
+  if (!file) return Status(M4D_ERR_INVALID_ARG, "cannot write " + args.output);
+  const std::string json_path = args.json.empty() ? args.output + ".json" : args.json;
+  const nlohmann::json extra = {{"options",
+                                 {{"dataset", args.capture.dataset},
+                                  {"lambda", options.motion.rate_weight},
+                                  {"sh_degree", options.sh_degree},
+                                  {"adaptive_gop", options.gop.adaptive},
+                                  {"fixed_gop", options.gop.fixed_length},
+                                  {"gop_threshold", options.gop.threshold},
+                                  {"decoupling", options.ablation.decoupling},
+                                  {"motion_estimation", options.ablation.motion_estimation},
+                                  {"compensation", options.ablation.compensation},
+                                  {"rate_term", options.ablation.rate_term},
+                                  {"seed", options.seed}}}};
+  M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
+  std::printf("%-34s %s (report %s)\n", "stream", args.output.c_str(), json_path.c_str());
+  return Status::Ok();
+}
+
+void AddEncodeCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<EncodeArguments>();
+  CLI::App* cmd = app->add_subcommand("encode", "encode a multi-view video into an M4D stream");
+  AddCaptureArguments(cmd, &args->capture);
+  AddEncoderOptions(cmd, args.get());
+  cmd->add_option("-o,--output", args->output, "stream file")->capture_default_str();
+  cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
+  cmd->callback([args, exit_code]() {
+    SequenceReport report;
+    *exit_code = ReportStatus("encode", RunEncode(*args, &report));
+  });
+}
+
+}  // namespace m4d

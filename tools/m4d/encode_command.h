@@ -1,0 +1,37 @@
+// m4d encode: codes a dataset into an M4D stream with the reference encoder and reports
+// bytes, quality and time per frame (table on stdout, JSON beside the stream).
+#ifndef M4D_TOOLS_M4D_ENCODE_COMMAND_H_
+#define M4D_TOOLS_M4D_ENCODE_COMMAND_H_
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "capture_arguments.h"
+#include "common/status.h"
+#include "pipeline/encoder_options.h"
+#include "pipeline/frame_report.h"
+
+namespace m4d {
+
+struct EncodeArguments {
+  CaptureArguments capture;
+  EncoderOptions encoder;
+  std::string rate_point;  // r1..r5, or empty for --lambda
+  std::string output = "out/default.m4d";
+  std::string json;  // default: output + ".json"
+};
+
+// The paper's rate points: r1 (lowest rate) .. r5 = lambda_2 5e-4 .. 5e-5.
+Status RatePointLambda(const std::string& name, double* lambda);
+
+// Adds the encoder's options (stages, GOP, ablations, rate) to a command.
+void AddEncoderOptions(CLI::App* command, EncodeArguments* args);
+
+// Encodes with progress on stderr and the frame table on stdout; writes stream and JSON.
+Status RunEncode(const EncodeArguments& args, SequenceReport* report);
+
+void AddEncodeCommand(CLI::App* app, int* exit_code);
+
+}  // namespace m4d
+
+#endif  // M4D_TOOLS_M4D_ENCODE_COMMAND_H_

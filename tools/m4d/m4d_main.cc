@@ -1,0 +1,21 @@
+// m4d: the reference encoder's command line. Subcommands: scene (write the built-in
+// synthetic scene), train (one frame's 3D Gaussians), encode (a multi-view video to a stream).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "encode_command.h"
+#include "m4d/m4d.h"
+#include "scene_command.h"
+#include "train_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"m4d: motion-decoupled 4D Gaussian video codec, reference encoder"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("m4d ") + m4d_version());
+  int exit_code = 0;
+  m4d::AddSceneCommand(&app, &exit_code);
+  m4d::AddTrainCommand(&app, &exit_code);
+  m4d::AddEncodeCommand(&app, &exit_code);
+  CLI11_PARSE(app, argc, argv);
+  return exit_code;
+}

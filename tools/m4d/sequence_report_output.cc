@@ -1,0 +1,136 @@
+#include "sequence_report_output.h"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace m4d {
+namespace {
+
+double Kb(size_t bytes) { return static_cast<double>(bytes) / 1000.0; }
+
+size_t Layer(const FrameReport& f, int type) { return f.bytes.by_type[type]; }
+
+}  // namespace
+
+SequenceSummary Summarise(const SequenceReport& report) {
+  SequenceSummary s;
+  size_t inter_bytes = 0, key_bytes = 0;
+  double inter_seconds = 0;
+  for (const FrameReport& f : report.frames) {
+    ++s.frames;
+    s.psnr += f.psnr;
+    s.ssim += f.ssim;
+    s.seconds += f.seconds.total();
+    if (f.keyframe) {
+      ++s.keyframes;
+      key_bytes += f.bytes.total();
+      s.keyframe_psnr += f.psnr;
+    } else {
+      inter_bytes += f.bytes.total();
+      inter_seconds += f.seconds.total();
+    }
+  }
+  const size_t inter = s.frames - s.keyframes;
+  if (s.frames) {
+    s.kb_per_frame = Kb(report.stream_bytes) / static_cast<double>(s.frames);
+    s.psnr /= static_cast<double>(s.frames);
+    s.ssim /= static_cast<double>(s.frames);
+  }
+  if (s.keyframes) {
+    s.kb_per_keyframe = Kb(key_bytes) / static_cast<double>(s.keyframes);
+    s.keyframe_psnr /= static_cast<double>(s.keyframes);
+  }
+  if (inter) {
+    s.kb_per_inter_frame = Kb(inter_bytes) / static_cast<double>(inter);
+    s.seconds_per_inter_frame = inter_seconds / static_cast<double>(inter);
+  }
+  return s;
+}
+
+void PrintFrameLine(std::FILE* out, const FrameReport& f, bool header) {
+  if (header) {
+    std::fprintf(out, "%5s %4s %9s %9s %7s %8s %8s %9s %8s %8s %6s %6s %7s %6s %7s\n", "frame",
+                 "type", "static KB", "dyn KB", "mlp KB", "grid KB", "comp KB", "total KB",
+                 "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "time s");
+  }
+  std::fprintf(
+      out, "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7.2f %6.4f %7.1f\n",
+      f.frame_index, f.keyframe ? "key" : "inter", Kb(Layer(f, M4D_PACKET_KEYFRAME_STATIC)),
+      Kb(Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)), Kb(Layer(f, M4D_PACKET_MLP_WEIGHTS)),
+      Kb(Layer(f, M4D_PACKET_MOTION_GRID)), Kb(Layer(f, M4D_PACKET_COMPENSATION)),
+      Kb(f.bytes.total()), f.static_count, f.dynamic_count, f.added, f.removed, f.psnr, f.ssim,
+      f.seconds.total());
+  std::fflush(out);
+}
+
+void PrintSummary(std::FILE* out, const SequenceReport& report) {
+  const SequenceSummary s = Summarise(report);
+  std::fprintf(out, "\n%-34s %zu (%zu keyframes)\n", "frames", s.frames, s.keyframes);
+  std::fprintf(out, "%-34s %zu bytes\n", "stream", report.stream_bytes);
+  std::fprintf(out, "%-34s %.2f KB\n", "per frame (keyframes included)", s.kb_per_frame);
+  std::fprintf(out, "%-34s %.2f KB\n", "per inter frame", s.kb_per_inter_frame);
+  std::fprintf(out, "%-34s %.2f KB\n", "per keyframe", s.kb_per_keyframe);
+  std::fprintf(out, "%-34s %.2f dB (keyframes %.2f dB), SSIM %.4f\n", "held-out PSNR", s.psnr,
+               s.keyframe_psnr, s.ssim);
+  std::fprintf(out, "%-34s %.1f s (%.1f s per inter frame)\n", "encoding time", s.seconds,
+               s.seconds_per_inter_frame);
+}
+
+Status WriteReportJson(const std::string& path, const SequenceReport& report,
+                       const std::string& extra_json_object) {
+  using nlohmann::json;
+  json frames = json::array();
+  for (const FrameReport& f : report.frames) {
+    json bytes = {{"static", Layer(f, M4D_PACKET_KEYFRAME_STATIC)},
+                  {"dynamic", Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)},
+                  {"mlp", Layer(f, M4D_PACKET_MLP_WEIGHTS)},
+                  {"sequence_header", Layer(f, M4D_PACKET_SEQUENCE_HEADER)},
+                  {"motion_grid", Layer(f, M4D_PACKET_MOTION_GRID)},
+                  {"compensation", Layer(f, M4D_PACKET_COMPENSATION)},
+                  {"total", f.bytes.total()}};
+    json seconds = {{"keyframe", f.seconds.keyframe}, {"decoupling", f.seconds.decoupling},
+                    {"motion", f.seconds.motion},     {"compensation", f.seconds.compensation},
+                    {"coding", f.seconds.coding},     {"evaluation", f.seconds.evaluation},
+                    {"total", f.seconds.total()}};
+    frames.push_back({{"frame", f.frame_index},
+                      {"keyframe", f.keyframe},
+                      {"bytes", bytes},
+                      {"static_gaussians", f.static_count},
+                      {"dynamic_gaussians", f.dynamic_count},
+                      {"added", f.added},
+                      {"removed", f.removed},
+                      {"gop_ratio", f.ratio},
+                      {"psnr", f.psnr},
+                      {"ssim", f.ssim},
+                      {"hash", f.hash},
+                      {"seconds", seconds}});
+  }
+  const SequenceSummary s = Summarise(report);
+  json doc = {{"frames", frames},
+              {"summary",
+               {{"frames", s.frames},
+                {"keyframes", s.keyframes},
+                {"stream_bytes", report.stream_bytes},
+                {"kb_per_frame", s.kb_per_frame},
+                {"kb_per_inter_frame", s.kb_per_inter_frame},
+                {"kb_per_keyframe", s.kb_per_keyframe},
+                {"psnr", s.psnr},
+                {"keyframe_psnr", s.keyframe_psnr},
+                {"ssim", s.ssim},
+                {"seconds", s.seconds},
+                {"seconds_per_inter_frame", s.seconds_per_inter_frame}}}};
+  if (!extra_json_object.empty()) {
+    json extra = json::parse(extra_json_object, nullptr, false);
+    if (extra.is_object()) doc.update(extra);
+  }
+  std::error_code ec;
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  std::ofstream file(path);
+  file << doc.dump(2) << "\n";
+  if (!file) return Status(M4D_ERR_INVALID_ARG, "cannot write " + path);
+  return Status::Ok();
+}
+
+}  // namespace m4d

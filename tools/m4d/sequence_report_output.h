@@ -1,0 +1,37 @@
+// The encoder's report as a person reads it (a table per frame and a summary) and as
+// programs read it (JSON with the same fields).
+#ifndef M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
+#define M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
+
+#include <cstdio>
+#include <string>
+
+#include "common/status.h"
+#include "pipeline/frame_report.h"
+
+namespace m4d {
+
+struct SequenceSummary {
+  size_t frames = 0, keyframes = 0;
+  double kb_per_frame = 0;        // all frames, keyframes included (the papers' KB/frame)
+  double kb_per_inter_frame = 0;  // inter frames only
+  double kb_per_keyframe = 0;
+  double psnr = 0, ssim = 0;           // mean over frames
+  double keyframe_psnr = 0;            // mean over keyframes
+  double seconds = 0;                  // all stages, all frames
+  double seconds_per_inter_frame = 0;  // motion + compensation + coding + evaluation
+};
+
+SequenceSummary Summarise(const SequenceReport& report);
+
+// One line per frame; the header line first when `header`.
+void PrintFrameLine(std::FILE* out, const FrameReport& frame, bool header);
+void PrintSummary(std::FILE* out, const SequenceReport& report);
+
+// The report as JSON (frames, summary, and `extra` fields such as the options used).
+Status WriteReportJson(const std::string& path, const SequenceReport& report,
+                       const std::string& extra_json_object);
+
+}  // namespace m4d
+
+#endif  // M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_

@@ -1,0 +1,111 @@
+#include "train_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "capture_arguments.h"
+#include "command_status.h"
+#include "image/png_io.h"
+#include "ply/gaussian_ply.h"
+#include "train/keyframe_trainer.h"
+#include "train/progress_bar.h"
+#include "train/view_evaluation.h"
+#include "view_strip.h"
+
+namespace m4d {
+namespace {
+
+struct TrainArguments {
+  CaptureArguments capture;
+  int frame = 0;
+  int iterations = 0;  // 0: the schedule's
+  bool reference_schedule = false;
+  int sh_degree = 3;
+  int threads = 0;
+  uint64_t seed = 1;
+  std::string ply = "out/keyframe.ply";
+  std::string render = "out/keyframe_test_view.png";
+};
+
+Status RunTrain(const TrainArguments& args) {
+  Capture capture;
+  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  KeyframeTrainingOptions options = args.reference_schedule ? KeyframeTrainingOptions::Reference()
+                                                            : KeyframeTrainingOptions::Short();
+  if (args.iterations > 0) options.iterations = args.iterations;
+  options.sh_degree = args.sh_degree;
+  options.threads = args.threads;
+  options.seed = args.seed;
+  const auto start = std::chrono::steady_clock::now();
+  ProgressBar bar;
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(TrainKeyframe(
+      capture, args.frame, options, [&](const TrainingProgress& p) { bar.Update(p); }, &model));
+  bar.Finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  RenderSettings settings;
+  settings.threads = args.threads;
+  settings.sh_degree = args.sh_degree;
+  TrainingViews train, test;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, capture.TrainCameras(), &train));
+  EvaluationResult train_quality, test_quality;
+  M4D_RETURN_IF_ERROR(EvaluateViews(model, train, settings, nullptr, &train_quality));
+  std::printf("\n%-28s %s\n", "keyframe training", capture.layout.c_str());
+  std::printf("%-28s %d (%d views of %dx%d)\n", "frame", args.frame, train.size(),
+              train.cameras[0].width, train.cameras[0].height);
+  std::printf("%-28s %d\n", "iterations", options.iterations);
+  std::printf("%-28s %zu\n", "Gaussians", model.size());
+  std::printf("%-28s %.1f s (%.1f ms per iteration)\n", "wall time", seconds,
+              1000.0 * seconds / options.iterations);
+  std::printf("%-28s %.2f dB  SSIM %.4f\n", "training views", train_quality.mean_psnr,
+              train_quality.mean_ssim);
+  if (capture.test_camera >= 0) {
+    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, {capture.test_camera}, &test));
+    M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &test_quality));
+    std::printf("%-28s %.2f dB  SSIM %.4f\n", "held-out camera", test_quality.mean_psnr,
+                test_quality.mean_ssim);
+    if (!args.render.empty()) {
+      Image rendered;
+      M4D_RETURN_IF_ERROR(RenderView(model, test.cameras[0], settings, nullptr, &rendered));
+      M4D_RETURN_IF_ERROR(WriteViewStrip(args.render, {&test.images[0], &rendered}));
+      std::printf("%-28s %s (ground truth | render)\n", "held-out view", args.render.c_str());
+    }
+  }
+  if (!args.ply.empty()) {
+    GaussianSet set;
+    M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, model.sh_degree, &set));
+    M4D_RETURN_IF_ERROR(WriteGaussianPly(args.ply, set));
+    std::printf("%-28s %s\n", "model (3DGS PLY)", args.ply.c_str());
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+void AddTrainCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<TrainArguments>();
+  CLI::App* cmd = app->add_subcommand(
+      "train", "train one frame's 3D Gaussians (the keyframe stage) and report its quality");
+  AddCaptureArguments(cmd, &args->capture);
+  cmd->add_option("--frame", args->frame, "frame to train")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--iterations", args->iterations, "iterations (0: the schedule's)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--reference-schedule", args->reference_schedule,
+                "the reference 3DGS schedule (30000 iterations) instead of the short one");
+  cmd->add_option("--sh-degree", args->sh_degree, "SH degree")
+      ->check(CLI::Range(0, 3))
+      ->capture_default_str();
+  cmd->add_option("--threads", args->threads, "threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--ply", args->ply, "write the model here ('' to skip)")->capture_default_str();
+  cmd->add_option("--render", args->render, "held-out view beside its ground truth, PNG")
+      ->capture_default_str();
+  cmd->callback([args, exit_code]() { *exit_code = ReportStatus("train", RunTrain(*args)); });
+}
+
+}  // namespace m4d
