@@ -34,9 +34,9 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();
-  cmd->add_option("--keyframe-iterations", o.keyframe.iterations, "first keyframe's training")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  cmd->add_option("--keyframe-iterations", a->keyframe_iterations,
+                  "first keyframe's training (the short schedule scaled; default 7000)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -77,6 +77,9 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     M4D_RETURN_IF_ERROR(RatePointLambda(args.rate_point, &options.motion.rate_weight));
   }
   if (options.gop.fixed_length > 0) options.gop.adaptive = false;
+  if (args.keyframe_iterations > 0) {
+    options.keyframe = KeyframeTrainingOptions::Short(args.keyframe_iterations);
+  }
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
 

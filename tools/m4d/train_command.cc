@@ -32,9 +32,11 @@ struct TrainArguments {
 Status RunTrain(const TrainArguments& args) {
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
-  KeyframeTrainingOptions options = args.reference_schedule ? KeyframeTrainingOptions::Reference()
-                                                            : KeyframeTrainingOptions::Short();
-  if (args.iterations > 0) options.iterations = args.iterations;
+  KeyframeTrainingOptions options = KeyframeTrainingOptions::Short();
+  if (args.reference_schedule) options = KeyframeTrainingOptions::Reference();
+  if (args.iterations > 0 && !args.reference_schedule) {
+    options = KeyframeTrainingOptions::Short(args.iterations);
+  }
   options.sh_degree = args.sh_degree;
   options.threads = args.threads;
   options.seed = args.seed;
@@ -92,7 +94,8 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       "train", "train one frame's 3D Gaussians (the keyframe stage) and report its quality");
   AddCaptureArguments(cmd, &args->capture);
   cmd->add_option("--frame", args->frame, "frame to train")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--iterations", args->iterations, "iterations (0: the schedule's)")
+  cmd->add_option("--iterations", args->iterations,
+                  "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--reference-schedule", args->reference_schedule,
                 "the reference 3DGS schedule (30000 iterations) instead of the short one");

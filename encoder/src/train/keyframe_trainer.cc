@@ -1,5 +1,7 @@
 #include "train/keyframe_trainer.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -24,15 +26,18 @@ Status OptionError(const std::string& what) {
 
 KeyframeTrainingOptions KeyframeTrainingOptions::Reference() { return KeyframeTrainingOptions(); }
 
-KeyframeTrainingOptions KeyframeTrainingOptions::Short() {
+KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   KeyframeTrainingOptions o;
-  o.iterations = 7000;
-  o.learning_rates.position.max_steps = 7000;
-  o.densify_from = 500;
-  o.densify_until = 3500;
-  o.densify_interval = 100;
-  o.opacity_reset_interval = 3000;
-  o.sh_degree_interval = 233;
+  iterations = std::max(iterations, 1);
+  // The 7000-iteration schedule's proportions at any length: densification over the first
+  // half (from 1/14 of the run), one opacity reset at 3/7, full SH degree at a tenth.
+  o.iterations = iterations;
+  o.learning_rates.position.max_steps = iterations;
+  o.densify_from = std::max(1, iterations / 14);
+  o.densify_until = iterations / 2;
+  o.densify_interval = std::clamp(iterations / 70, 1, 100);
+  o.opacity_reset_interval = std::max(1, iterations * 3 / 7);
+  o.sh_degree_interval = std::max(1, iterations / 30);
   o.densification.max_gaussians = 1000000;
   return o;
 }

@@ -73,7 +73,10 @@ struct KeyframeTrainingOptions {
   // iterations of size pruning; position decay over 7000 iterations; SH degree up every 233
   // iterations (1000 x 7000 / 30000, full degree at 10% of the run as in the reference);
   // at most 1 million Gaussians.
-  static KeyframeTrainingOptions Short();
+  // The same proportions at another length (Short() is Short(7000)): densification from
+  // iterations / 14 to half the run every iterations / 70 (at most 100), the opacity reset at
+  // 3/7 of the run, SH degree up every iterations / 30.
+  static KeyframeTrainingOptions Short(int iterations = 7000);
 };
 
 // Checks ranges and consistency; M4D_ERR_INVALID_ARG names the bad option.
