@@ -72,7 +72,8 @@ Status RunTrain(const TrainArguments& args) {
                 test_quality.mean_ssim);
     if (!args.render.empty()) {
       Image rendered;
-      M4D_RETURN_IF_ERROR(RenderView(model, test.cameras[0], settings, nullptr, &rendered));
+      RenderContext context;
+      M4D_RETURN_IF_ERROR(RenderView(model, test.cameras[0], settings, &context, &rendered));
       M4D_RETURN_IF_ERROR(WriteViewStrip(args.render, {&test.images[0], &rendered}));
       std::printf("%-28s %s (ground truth | render)\n", "held-out view", args.render.c_str());
     }
