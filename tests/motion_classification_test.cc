@@ -17,8 +17,8 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 TEST(MotionClassificationTest, ThresholdsThenErrorRefinement) {
   LookaheadMeasures m;
   m.displacement = {0.0f, 5.0f, 0.0f, 5.0f, 5.0f};
-  m.scale_change = {0.0f, 0.0f, 0.2f, 0.0f, 0.0f};
-  m.error = {0.0f, 0.01f, 0.01f, 0.03f, kNaN};
+  m.scale_change = {0.0f, 0.0f, 2.0f, 0.0f, 0.0f};
+  m.error = {0.0f, 0.01f, 0.01f, 0.3f, kNaN};
   DecouplingThresholds t;
   std::vector<uint8_t> c = ClassifyDynamic(m, t, {});
   EXPECT_EQ(c, (std::vector<uint8_t>{0, 1, 1, 0, 1}));

@@ -120,6 +120,7 @@ EncoderOptions SmallOptions() {
   o.lookahead_frames = 2;
   o.decoupling.fine_tune_iterations = 100;
   o.decoupling.thresholds.displacement = 0.2f;
+  o.decoupling.thresholds.scale_change = 0.3f;
   o.motion.iterations = 40;
   o.first_motion_iterations = 80;
   o.compensation.iterations = 30;

@@ -9,6 +9,7 @@
 #include "command_status.h"
 #include "pipeline/sequence_encoder.h"
 #include "sequence_report_output.h"
+#include "stream_check.h"
 #include "train/progress_bar.h"
 
 namespace m4d {
@@ -126,6 +127,9 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
                                   {"rate_term", options.ablation.rate_term},
                                   {"seed", options.seed}}}};
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
+  M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));
+  std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",
+              "decoder check", report->frames.size());
   std::printf("%-34s %s (report %s)\n", "stream", args.output.c_str(), json_path.c_str());
   return Status::Ok();
 }

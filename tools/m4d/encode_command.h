@@ -16,7 +16,7 @@ namespace m4d {
 struct EncodeArguments {
   CaptureArguments capture;
   EncoderOptions encoder;
-  std::string rate_point;  // r1..r5, or empty for --lambda
+  std::string rate_point;       // r1..r5, or empty for --lambda
   int keyframe_iterations = 0;  // 0: the options' schedule
   std::string output = "out/default.m4d";
   std::string json;  // default: output + ".json"

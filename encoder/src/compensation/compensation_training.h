@@ -24,7 +24,7 @@
 namespace m4d {
 
 struct CompensationOptions {
-  int iterations = 100;
+  int iterations = 60;
   double sparsity_weight = 5e-5;  // lambda_3
   float prune_opacity = 0.005f;   // added Gaussians below are removed
   int prune_interval = 25;

@@ -73,9 +73,9 @@ void MotionEstimator::StartGop(uint64_t seed) {
 double MotionEstimator::RateAndGradient(const MotionParameters& noisy, double weight,
                                         MotionParameters* grad,
                                         std::vector<float>* entropy_grad) const {
-  // L_rate is in bits per grid value over the whole grid (voxels outside the stencil are
-  // zero); gradients are of weight * L_rate.
-  const float scale = static_cast<float>(weight / static_cast<double>(config_.total_values()));
+  // Bits of the whole grid (voxels outside the stencil are zero); gradients are of
+  // weight * bits.
+  const float scale = static_cast<float>(weight);
   double bits = 0;
   int d = 0;
   for (int l = 0; l < config_.num_levels; ++l) {
@@ -200,7 +200,9 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
     field.Backward(d_p.data(), d_q.data(), &grad);
     if (options.rate_term) {
       std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
-      RateAndGradient(noisy, options.rate_weight, &grad, &entropy_grad);
+      // L_rate in bits per pixel of the view: L_color is a mean over those pixels.
+      const double pixels = static_cast<double>(camera.width) * camera.height;
+      RateAndGradient(noisy, options.rate_weight / pixels, &grad, &entropy_grad);
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);

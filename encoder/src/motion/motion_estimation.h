@@ -3,7 +3,9 @@
 // plus the moved dynamic set of frame t-1 render the training views of frame t, under
 //   L_s2 = L_color + lambda_2 L_rate,
 // with simulated quantization (uniform noise of one quantization step on the grid values)
-// and L_rate the bits of the noisy grid under the learned entropy model per grid value.
+// and L_rate the bits of the noisy grid under the learned entropy model per pixel of the
+// view trained on (L_color being a mean over those pixels; the paper does not give its
+// normalisation, and with this one its lambda_2 set spans a useful range of rates).
 //
 // The dynamic set of frame t-1 is what the decoder reconstructed (closed loop); its positions
 // do not change while the grid is trained, so each Gaussian reads fixed voxels (MotionStencil)
@@ -30,7 +32,7 @@
 namespace m4d {
 
 struct MotionEstimationOptions {
-  int iterations = 200;
+  int iterations = 100;
   float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)
   float mlp_learning_rate = 1e-3f;
   float entropy_learning_rate = 1e-2f;
@@ -77,7 +79,7 @@ class MotionEstimator {
   const float* steps() const { return steps_; }
 
  private:
-  // Bits of the grid under the entropy model; adds the gradients of weight * L_rate.
+  // Bits of the grid under the entropy model; adds the gradients of weight * bits.
   double RateAndGradient(const MotionParameters& noisy, double weight, MotionParameters* grad,
                          std::vector<float>* entropy_grad) const;
 

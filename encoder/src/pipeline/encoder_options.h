@@ -51,11 +51,11 @@ struct EncoderOptions {
   KeyframeTrainingOptions keyframe = KeyframeTrainingOptions::Short();
   // A new GOP's keyframe starts from the previous frame's state and trains this long (with
   // densification over its first half).
-  int retrain_iterations = 1500;
+  int retrain_iterations = 500;
   int lookahead_frames = 30;  // t1 = keyframe + this, within the sequence (paper: about 30)
   DecouplingOptions decoupling;
   MotionEstimationOptions motion;
-  int first_motion_iterations = 400;  // the first inter frame of a GOP also trains the MLP
+  int first_motion_iterations = 300;  // the first inter frame of a GOP also trains the MLP
   CompensationThresholds compensation_thresholds;
   CompensationOptions compensation;
   GopOptions gop;

@@ -1,0 +1,19 @@
+// The closed loop seen from outside: a written stream decoded with the SDK's public API must
+// give, frame by frame, the hashes of the encoder's reconstruction.
+#ifndef M4D_TOOLS_M4D_STREAM_CHECK_H_
+#define M4D_TOOLS_M4D_STREAM_CHECK_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "common/status.h"
+#include "pipeline/frame_report.h"
+
+namespace m4d {
+
+// M4D_ERR_BITSTREAM naming the first frame that differs (or a count mismatch).
+Status CheckDecodedHashes(const std::vector<uint8_t>& stream, const SequenceReport& report);
+
+}  // namespace m4d
+
+#endif  // M4D_TOOLS_M4D_STREAM_CHECK_H_
