@@ -10,6 +10,15 @@
 namespace m4d {
 namespace {
 
+// The paper's thresholds: tau_g = 1e-4, tau_mu = 0.08, tau_R = pi / 4.
+CompensationThresholds PaperThresholds() {
+  CompensationThresholds t;
+  t.gradient = 1e-4f;
+  t.translation = 0.08f;
+  t.rotation = 0.78539816f;
+  return t;
+}
+
 GaussianSet ThreeGaussians() {
   GaussianSet set;
   set.sh_degree = 1;
@@ -28,7 +37,7 @@ TEST(CompensationCandidatesTest, ReplicatesWhereTheGradientIsLarge) {
   GaussianSet set = ThreeGaussians();
   std::vector<float> motion(21, 0.0f);
   CompensationCandidates c =
-      ProposeCompensation(set, {0.0f, 2e-4f, 5e-5f}, motion, CompensationThresholds(), 1);
+      ProposeCompensation(set, {0.0f, 2e-4f, 5e-5f}, motion, PaperThresholds(), 1);
   EXPECT_EQ(c.replicated, 1u);
   EXPECT_EQ(c.split, 0u);
   ASSERT_EQ(c.added.size(), 1u);
@@ -47,7 +56,7 @@ TEST(CompensationCandidatesTest, SplitsLargeTranslationsAndRotations) {
   motion[7 * 2 + 6] = std::sin(0.7853982f);
   EXPECT_NEAR(IncrementAngle(&motion[14]), 1.5707964f, 1e-5f);
   CompensationCandidates c =
-      ProposeCompensation(set, {0.0f, 0.0f, 0.0f}, motion, CompensationThresholds(), 2);
+      ProposeCompensation(set, {0.0f, 0.0f, 0.0f}, motion, PaperThresholds(), 2);
   EXPECT_EQ(c.split, 2u);
   ASSERT_EQ(c.added.size(), 4u);
   EXPECT_EQ(c.removed, (std::vector<uint8_t>{1, 0, 1}));
@@ -61,7 +70,7 @@ TEST(CompensationCandidatesTest, SplitsLargeTranslationsAndRotations) {
   EXPECT_NE(c.added.positions[0], c.added.positions[3]);
   // Deterministic given the seed.
   CompensationCandidates again =
-      ProposeCompensation(set, {0.0f, 0.0f, 0.0f}, motion, CompensationThresholds(), 2);
+      ProposeCompensation(set, {0.0f, 0.0f, 0.0f}, motion, PaperThresholds(), 2);
   EXPECT_EQ(again.added.positions, c.added.positions);
 }
 
