@@ -13,6 +13,6 @@ mkdir -p out
 m4d=build/release/tools/m4d/m4d
 # A keyframe schedule of 2000 iterations keeps the demo within about a quarter of an hour on
 # two cores; `m4d encode default` alone uses the full short schedule (7000).
-"$m4d" encode default -o out/default.m4d --keyframe-iterations 2000 "$@"
+"$m4d" encode default -o out/default.m4d --keyframe-iterations 2000 --views out/default-views "$@"
 build/release/tools/m4d_decode out/default.m4d -o out/default.md5
 echo "per-frame hashes of the SDK's decode: out/default.md5; report: out/default.m4d.json"

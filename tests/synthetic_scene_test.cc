@@ -265,15 +265,16 @@ TEST(SyntheticScene, FigureMovesWhileTheRoomStaysStill) {
   std::unique_ptr<SyntheticScene> scene = MakeScene(o);
   ASSERT_NE(scene, nullptr);
   for (int camera = 0; camera < o.cameras; ++camera) {
+    // Two frames apart: a frame's motion is a few pixels, like a 30 fps capture's.
     const std::vector<uint8_t> a = Render(scene.get(), 1, camera),
-                               b = Render(scene.get(), 2, camera);
-    const std::vector<char> moving = ObjectMask(*scene, camera, {1, 2}, MovesOrTurns);
+                               b = Render(scene.get(), 3, camera);
+    const std::vector<char> moving = ObjectMask(*scene, camera, {1, 3}, MovesOrTurns);
     const Difference room = Compare(a, b, moving, 0);
     EXPECT_GT(room.compared, 96 * 72 / 2);
     EXPECT_EQ(room.pixels, 0) << "camera " << camera;
-    const Difference figure = Compare(a, b, ObjectMask(*scene, camera, {1, 2}, IsFigure), 1);
+    const Difference figure = Compare(a, b, ObjectMask(*scene, camera, {1, 3}, IsFigure), 1);
     EXPECT_GT(figure.pixels, figure.compared / 5) << "camera " << camera;
-    EXPECT_GT(figure.mean, 0.02) << "camera " << camera;
+    EXPECT_GT(figure.mean, 0.01) << "camera " << camera;
   }
 }
 

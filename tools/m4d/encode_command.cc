@@ -1,5 +1,7 @@
 #include "encode_command.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,9 +10,11 @@
 
 #include "command_status.h"
 #include "pipeline/sequence_encoder.h"
+#include "ply/gaussian_ply.h"
 #include "sequence_report_output.h"
 #include "stream_check.h"
 #include "train/progress_bar.h"
+#include "view_strip.h"
 
 namespace m4d {
 
@@ -26,6 +30,19 @@ Status RatePointLambda(const std::string& name, double* lambda) {
   return Status(M4D_ERR_INVALID_ARG, "unknown rate point '" + name + "' (r1..r5)");
 }
 
+namespace {
+
+// |truth - render| times gain, clamped: where the decoded frame differs.
+Image ErrorImage(const Image& truth, const Image& render, float gain) {
+  Image error(truth.width, truth.height, 3);
+  for (size_t i = 0; i < error.pixels.size(); ++i) {
+    error.pixels[i] = std::min(1.0f, gain * std::fabs(truth.pixels[i] - render.pixels[i]));
+  }
+  return error;
+}
+
+}  // namespace
+
 void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   EncoderOptions& o = a->encoder;
   cmd->add_option("--lambda", o.motion.rate_weight, "rate weight lambda_2 of motion estimation")
@@ -38,14 +55,35 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--keyframe-iterations", a->keyframe_iterations,
                   "first keyframe's training (the short schedule scaled; default 7000)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--keyframe-ply", a->keyframe_ply,
+                  "start from this trained first keyframe (a 3DGS PLY, e.g. from m4d train) "
+                  "instead of training it")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--lookahead", o.lookahead_frames, "frames from a keyframe to t1")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--lookahead-step", o.lookahead_step,
+                  "frames between the lookahead's fine-tuning steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--tau-delta", o.decoupling.thresholds.displacement,
+                  "decoupling: projected displacement threshold (our units, see the README)")
+      ->capture_default_str();
+  cmd->add_option("--tau-s", o.decoupling.thresholds.scale_change,
+                  "decoupling: log-scale change threshold")
+      ->capture_default_str();
+  cmd->add_option("--tau-e", o.decoupling.thresholds.error,
+                  "decoupling: error threshold of the refinement (mean absolute error in [0, 1])")
+      ->capture_default_str();
   cmd->add_option("--motion-iterations", o.motion.iterations, "motion estimation per frame")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--motion-views-per-step", o.motion.views_per_step,
+                  "training views averaged in each motion estimation step")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--compensation-iterations", o.compensation.iterations,
                   "compensation training per frame")
@@ -102,9 +140,33 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     PrintFrameLine(stdout, f, header);
     header = false;
   };
+  Status view_status = Status::Ok();
+  if (!args.views.empty()) {
+    callbacks.held_out_view = [&](int frame, const Image& truth, const Image& render) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%05d.png", frame);
+      const Image error = ErrorImage(truth, render, 4.0f);
+      const Status s = WriteViewStrip((std::filesystem::path(args.views) / name).string(),
+                                      {&truth, &render, &error});
+      if (view_status.ok()) view_status = s;
+    };
+  }
   SequenceEncoder encoder(capture, options);
+  if (!args.keyframe_ply.empty()) {
+    GaussianSet set;
+    GaussianModel model;
+    M4D_RETURN_IF_ERROR(ReadGaussianPly(args.keyframe_ply, &set));
+    if (set.sh_degree < options.sh_degree) {
+      return Status(M4D_ERR_INVALID_ARG,
+                    args.keyframe_ply + ": SH degree " + std::to_string(set.sh_degree) +
+                        " below the stream's " + std::to_string(options.sh_degree));
+    }
+    M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, options.sh_degree, &model));
+    encoder.SetFirstKeyframe(std::move(model));
+  }
   M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, report));
   PrintSummary(stdout, *report);
+  M4D_RETURN_IF_ERROR(view_status);
 
   std::error_code ec;
   const std::filesystem::path parent = std::filesystem::path(args.output).parent_path();
@@ -141,6 +203,9 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   AddEncoderOptions(cmd, args.get());
   cmd->add_option("-o,--output", args->output, "stream file")->capture_default_str();
   cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
+  cmd->add_option("--views", args->views,
+                  "write the held-out view, its decoded render and their difference (x4), one PNG "
+                  "per frame, here");
   cmd->callback([args, exit_code]() {
     SequenceReport report;
     *exit_code = ReportStatus("encode", RunEncode(*args, &report));

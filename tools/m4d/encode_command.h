@@ -18,8 +18,10 @@ struct EncodeArguments {
   EncoderOptions encoder;
   std::string rate_point;       // r1..r5, or empty for --lambda
   int keyframe_iterations = 0;  // 0: the options' schedule
+  std::string keyframe_ply;     // first keyframe read from here instead of trained
   std::string output = "out/default.m4d";
-  std::string json;  // default: output + ".json"
+  std::string json;   // default: output + ".json"
+  std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)
 };
 
 // The paper's rate points: r1 (lowest rate) .. r5 = lambda_2 5e-4 .. 5e-5.

@@ -1,5 +1,6 @@
 #include "decoupling/lookahead_decoupling.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "decoupling/lookahead_measures.h"
@@ -75,34 +76,55 @@ void SplitModel(const GaussianModel& model, const std::vector<uint8_t>& flags,
   rest->Keep(others);
 }
 
-Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& views_t1,
+namespace {
+
+// Keeps, per Gaussian, the largest changes and the smallest error seen so far.
+void MergeMeasures(const LookaheadMeasures& step, LookaheadMeasures* all) {
+  if (all->size() == 0) {
+    *all = step;
+    return;
+  }
+  for (size_t i = 0; i < step.size(); ++i) {
+    all->displacement[i] = std::max(all->displacement[i], step.displacement[i]);
+    all->scale_change[i] = std::max(all->scale_change[i], step.scale_change[i]);
+    if (!(all->error[i] <= step.error[i])) all->error[i] = step.error[i];  // NaN: no pixel
+  }
+}
+
+}  // namespace
+
+Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<TrainingViews>& steps,
                         float scene_extent, const DecouplingOptions& options,
                         DecouplingResult* result) {
-  KeyframeTrainer trainer;
-  M4D_RETURN_IF_ERROR(
-      trainer.Init(FineTuneOptions(options, keyframe.sh_degree, scene_extent), views_t1, keyframe));
-  for (int group : {kGroupShDc, kGroupShRest, kGroupOpacity, kGroupRotation}) {
-    if (group < trainer.optimizer()->group_count()) trainer.optimizer()->SetFrozen(group, true);
-  }
-  M4D_RETURN_IF_ERROR(trainer.Train());
-  const GaussianModel& tuned = trainer.model();
-
+  if (steps.empty()) return Status(M4D_ERR_INVALID_ARG, "decoupling: no lookahead frame");
   RenderSettings settings;
   settings.threads = options.threads;
   settings.sh_degree = keyframe.sh_degree;
   std::copy(options.background, options.background + 3, settings.background);
-  std::vector<float> blend, error;
-  M4D_RETURN_IF_ERROR(ErrorWeights(tuned, views_t1, settings, &blend, &error));
+  result->measures = LookaheadMeasures();
+  GaussianModel tuned = keyframe;
+  for (const TrainingViews& views : steps) {
+    KeyframeTrainer trainer;
+    M4D_RETURN_IF_ERROR(
+        trainer.Init(FineTuneOptions(options, keyframe.sh_degree, scene_extent), views, tuned));
+    for (int group : {kGroupShDc, kGroupShRest, kGroupOpacity, kGroupRotation}) {
+      if (group < trainer.optimizer()->group_count()) trainer.optimizer()->SetFrozen(group, true);
+    }
+    M4D_RETURN_IF_ERROR(trainer.Train());
+    tuned = trainer.TakeModel();
 
-  LookaheadInput in;
-  in.count = keyframe.size();
-  in.positions_before = keyframe.positions.data();
-  in.positions_after = tuned.positions.data();
-  in.log_scales_before = keyframe.log_scales.data();
-  in.log_scales_after = tuned.log_scales.data();
-  in.blend_weight = blend.data();
-  in.error_weight = error.data();
-  result->measures = MeasureLookahead(views_t1.cameras, in);
+    std::vector<float> blend, error;
+    M4D_RETURN_IF_ERROR(ErrorWeights(tuned, views, settings, &blend, &error));
+    LookaheadInput in;
+    in.count = keyframe.size();
+    in.positions_before = keyframe.positions.data();
+    in.positions_after = tuned.positions.data();
+    in.log_scales_before = keyframe.log_scales.data();
+    in.log_scales_after = tuned.log_scales.data();
+    in.blend_weight = blend.data();
+    in.error_weight = error.data();
+    MergeMeasures(MeasureLookahead(views.cameras, in), &result->measures);
+  }
 
   // The counts of the first two steps, for reports.
   const LookaheadMeasures& m = result->measures;

@@ -3,6 +3,13 @@
 // frozen), the changes and the fine-tuned model's blend-weighted errors are measured
 // (lookahead_measures.h), and the classification (motion_classification.h) splits the keyframe
 // model - not the fine-tuned one - into its static and dynamic sets.
+//
+// The lookahead may pass through intermediate frames on its way to t1 (each step fine-tunes
+// the previous step's result): gradient steps follow motion of about a splat's size, so a
+// single jump to a frame 30 frames on loses fast content, and periodic motion (a swinging
+// arm) may be back where it started at t1. Each Gaussian keeps its largest displacement and
+// scale change over the steps and its smallest error: a point is a fitting artefact only if
+// no step fits it.
 #ifndef M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 #define M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 
@@ -18,7 +25,7 @@
 namespace m4d {
 
 struct DecouplingOptions {
-  int fine_tune_iterations = 300;
+  int fine_tune_iterations = 100;  // per lookahead step
   // Position rate of the fine-tuning, times the scene extent, decaying tenfold over it (the
   // paper's 5e-4 for its Gaussian optimisations); scales keep the keyframe's rate.
   float position_learning_rate = 5e-4f;
@@ -37,9 +44,10 @@ struct DecouplingResult {
   size_t refined_dynamic = 0;    // after the error refinement (before the vote)
 };
 
-// keyframe: the trained model of the keyframe; views_t1: the training views of frame t1.
-// scene_extent: the keyframe training's (for the position learning rate).
-Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& views_t1,
+// keyframe: the trained model of the keyframe; steps: the training views of the lookahead's
+// frames in time order, the last being t1 (at least one). scene_extent: the keyframe
+// training's (for the position learning rate).
+Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<TrainingViews>& steps,
                         float scene_extent, const DecouplingOptions& options,
                         DecouplingResult* result);
 

@@ -11,7 +11,8 @@
 namespace m4d {
 namespace {
 
-constexpr float kMaxGridValue = 2047.0f;  // what the grid writer can code (+-2047)
+constexpr float kMaxGridValue = 2047.0f;     // what the grid writer can code (+-2047)
+constexpr double kBitsPerRateUnit = 1000.0;  // L_rate in kilobits
 
 // One Adam per tensor: the optimizer keeps one row count for all its parameters.
 struct TensorAdam {
@@ -23,6 +24,7 @@ struct TensorAdam {
     adam.ResizeRows(rows);
     adam.AddGroup("values", parameter, 0, width, lr);
   }
+  void SetLearningRate(float lr) { adam.SetLearningRate(0, lr); }
   void Step(std::vector<float>* values, const std::vector<float>& grad) {
     adam.Step(parameter, values->data(), grad.data(), nullptr);
   }
@@ -163,16 +165,12 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   MotionField field;
   double color_sum = 0;
   int color_count = 0;
+  std::vector<float> sum_p(3 * n), sum_q(4 * n);
+  const int batch = std::clamp(options.views_per_step, 1, views.size());
   for (int it = 0; it < options.iterations; ++it) {
-    if (cursor == order.size()) {
-      order.resize(views.size());
-      for (int v = 0; v < views.size(); ++v) order[v] = v;
-      rng.Shuffle(&order);
-      cursor = 0;
-      color_sum = 0;
-      color_count = 0;
-    }
-    const int view = order[cursor++];
+    // The grid's rate decays tenfold over the frame: fast to the motion, then settled.
+    const float decay = std::pow(0.1f, static_cast<float>(it) / std::max(1, options.iterations));
+    for (auto& adam : grid_adam) adam->SetLearningRate(options.grid_learning_rate * decay);
     for (int l = 0; l < config_.num_levels; ++l) {
       for (size_t k = 0; k < params.grid[l].size(); ++k) {
         noisy.grid[l][k] =
@@ -184,25 +182,40 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
                   dynamic_set.rotations.data(), moved_p.data(), moved_q.data());
     const GaussianLayerView layers[2] = {LayerView(static_set),
                                          MovedView(dynamic_set, moved_p, moved_q)};
-    const Camera& camera = views.cameras[view];
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
-    rendered.width = camera.width;
-    rendered.height = camera.height;
-    rendered.channels = 3;
-    rendered.pixels = context.color;
-    PhotometricLossValue value;
-    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &loss_grad));
-    color_sum += value.loss;
-    ++color_count;
-    M4D_RETURN_IF_ERROR(
-        RenderBackward(loss_grad.pixels.data(), nullptr, &context, outputs, &workspace));
+    // L_color is the mean over the step's views: their gradients are averaged.
+    std::fill(sum_p.begin(), sum_p.end(), 0.0f);
+    std::fill(sum_q.begin(), sum_q.end(), 0.0f);
+    for (int b = 0; b < batch; ++b) {
+      if (cursor == order.size()) {
+        order.resize(views.size());
+        for (int v = 0; v < views.size(); ++v) order[v] = v;
+        rng.Shuffle(&order);
+        cursor = 0;
+        color_sum = 0;
+        color_count = 0;
+      }
+      const int view = order[cursor++];
+      const Camera& camera = views.cameras[view];
+      M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
+      rendered.width = camera.width;
+      rendered.height = camera.height;
+      rendered.channels = 3;
+      rendered.pixels = context.color;
+      PhotometricLossValue value;
+      M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &loss_grad));
+      color_sum += value.loss;
+      ++color_count;
+      M4D_RETURN_IF_ERROR(
+          RenderBackward(loss_grad.pixels.data(), nullptr, &context, outputs, &workspace));
+      const float w = 1.0f / static_cast<float>(batch);
+      for (size_t k = 0; k < sum_p.size(); ++k) sum_p[k] += w * d_p[k];
+      for (size_t k = 0; k < sum_q.size(); ++k) sum_q[k] += w * d_q[k];
+    }
     ZeroParameters(&grad);
-    field.Backward(d_p.data(), d_q.data(), &grad);
+    field.Backward(sum_p.data(), sum_q.data(), &grad);
     if (options.rate_term) {
       std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
-      // L_rate in bits per pixel of the view: L_color is a mean over those pixels.
-      const double pixels = static_cast<double>(camera.width) * camera.height;
-      RateAndGradient(noisy, options.rate_weight / pixels, &grad, &entropy_grad);
+      RateAndGradient(noisy, options.rate_weight / kBitsPerRateUnit, &grad, &entropy_grad);
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);

@@ -3,9 +3,10 @@
 // plus the moved dynamic set of frame t-1 render the training views of frame t, under
 //   L_s2 = L_color + lambda_2 L_rate,
 // with simulated quantization (uniform noise of one quantization step on the grid values)
-// and L_rate the bits of the noisy grid under the learned entropy model per pixel of the
-// view trained on (L_color being a mean over those pixels; the paper does not give its
-// normalisation, and with this one its lambda_2 set spans a useful range of rates).
+// and L_rate the kilobits of the noisy grid under the learned entropy model (the paper does not
+// give its normalisation; L_color being a mean over pixels, a rate in coded size keeps the
+// balance independent of the image size, and in kilobits the paper's lambda_2 set spans a
+// useful range of rates).
 //
 // The dynamic set of frame t-1 is what the decoder reconstructed (closed loop); its positions
 // do not change while the grid is trained, so each Gaussian reads fixed voxels (MotionStencil)
@@ -33,6 +34,7 @@ namespace m4d {
 
 struct MotionEstimationOptions {
   int iterations = 100;
+  int views_per_step = 1;           // training views rendered for each step (their mean loss)
   float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)
   float mlp_learning_rate = 1e-3f;
   float entropy_learning_rate = 1e-2f;

@@ -130,6 +130,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
   if (o.sh_degree < 0 || o.sh_degree > 3) return bad("SH degree must be 0..3");
   if (o.first_frame < 0 || o.frame_count < 0) return bad("negative frame range");
   if (o.lookahead_frames < 1) return bad("lookahead must be at least one frame");
+  if (o.lookahead_step < 1) return bad("lookahead step must be at least one frame");
   if (o.retrain_iterations < 1) return bad("retrain iterations must be positive");
   if (o.first_motion_iterations < 0 || o.motion.iterations < 0) return bad("motion iterations");
   if (o.gop.max_length < 1 || o.gop.min_length < 1 || o.gop.fixed_length < 0) {
@@ -146,6 +147,10 @@ SequenceEncoder::SequenceEncoder(const Capture& capture, const EncoderOptions& o
     : capture_(capture), options_(options) {}
 
 SequenceEncoder::~SequenceEncoder() = default;
+
+void SequenceEncoder::SetFirstKeyframe(GaussianModel model) {
+  first_keyframe_ = std::make_unique<GaussianModel>(std::move(model));
+}
 
 const std::vector<uint8_t>& SequenceEncoder::stream() const {
   static const std::vector<uint8_t> kEmpty;
@@ -175,12 +180,19 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
   keyframe.seed = options_.seed;
   std::copy(options_.background, options_.background + 3, keyframe.background);
   GaussianModel model;
-  M4D_RETURN_IF_ERROR(TrainKeyframe(
-      capture_, first, keyframe,
-      [&](const TrainingProgress& p) {
-        if (callbacks_.training) callbacks_.training("keyframe", first, p);
-      },
-      &model));
+  if (first_keyframe_) {
+    if (first_keyframe_->sh_degree < options_.sh_degree) {
+      return Status(M4D_ERR_INVALID_ARG, "encoder: first keyframe's SH degree below the stream's");
+    }
+    model = *first_keyframe_;
+  } else {
+    M4D_RETURN_IF_ERROR(TrainKeyframe(
+        capture_, first, keyframe,
+        [&](const TrainingProgress& p) {
+          if (callbacks_.training) callbacks_.training("keyframe", first, p);
+        },
+        &model));
+  }
   M4D_RETURN_IF_ERROR(StartGop(first, std::move(model), Since(start)));
   for (int t = first + 1; t <= last_frame_; ++t) {
     bool restart = false;
@@ -214,14 +226,19 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
   } else {
     if (callbacks_.stage) callbacks_.stage("decoupling", frame);
     const Clock::time_point start = Clock::now();
-    TrainingViews views_t1;
-    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, t1, capture_.TrainCameras(), &views_t1));
+    std::vector<TrainingViews> steps;
+    for (int t = frame + options_.lookahead_step;; t += options_.lookahead_step) {
+      t = std::min(t, t1);
+      steps.emplace_back();
+      M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, t, capture_.TrainCameras(), &steps.back()));
+      if (t == t1) break;
+    }
     DecouplingOptions decoupling = options_.decoupling;
     decoupling.threads = options_.threads;
     decoupling.seed = options_.seed + static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, decoupling.background);
     DecouplingResult result;
-    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, views_t1, gop.scene_extent, decoupling, &result));
+    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, steps, gop.scene_extent, decoupling, &result));
     static_model = std::move(result.static_model);
     dynamic_model = std::move(result.dynamic_model);
     gop.keyframe_report.seconds.decoupling = Since(start);
@@ -398,7 +415,13 @@ Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
   settings.sh_degree = options_.sh_degree;
   std::copy(options_.background, options_.background + 3, settings.background);
   EvaluationResult result;
-  M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &result));
+  RenderContext context;
+  M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, &context, &result));
+  if (callbacks_.held_out_view) {
+    Image render;
+    M4D_RETURN_IF_ERROR(RenderView(model, test.cameras[0], settings, &context, &render));
+    callbacks_.held_out_view(frame, test.images[0], render);
+  }
   report->psnr = result.mean_psnr;
   report->ssim = result.mean_ssim;
   report->seconds.evaluation = Since(start);

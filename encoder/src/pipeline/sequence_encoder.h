@@ -21,10 +21,12 @@
 
 #include "common/status.h"
 #include "dataset/capture.h"
+#include "image/image.h"
 #include "motion/motion_estimation.h"
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
 #include "stream/stream_writer.h"
+#include "train/gaussian_model.h"
 #include "train/progress_bar.h"
 
 namespace m4d {
@@ -37,12 +39,19 @@ struct EncoderCallbacks {
   std::function<void(const FrameReport&)> frame_coded;
   // A stage began: "decoupling", "motion", "compensation".
   std::function<void(const std::string& stage, int frame)> stage;
+  // The held-out camera's image of a coded frame and the render of its decoded Gaussians
+  // (clamped to [0, 1]); only called when the capture has a held-out camera.
+  std::function<void(int frame, const Image& truth, const Image& render)> held_out_view;
 };
 
 class SequenceEncoder {
  public:
   SequenceEncoder(const Capture& capture, const EncoderOptions& options);
   ~SequenceEncoder();
+
+  // Starts the first GOP from this model (e.g. a keyframe trained earlier, read from a PLY)
+  // instead of training one; its SH degree must be at least the stream's.
+  void SetFirstKeyframe(GaussianModel model);
 
   Status Encode(const EncoderCallbacks& callbacks, SequenceReport* report);
 
@@ -66,6 +75,7 @@ class SequenceEncoder {
   std::unique_ptr<StreamWriter> writer_;
   std::unique_ptr<MotionEstimator> estimator_;
   std::unique_ptr<Gop> gop_;
+  std::unique_ptr<GaussianModel> first_keyframe_;
 };
 
 }  // namespace m4d

@@ -11,9 +11,11 @@ namespace m4d {
 namespace {
 
 constexpr float kTwoPi = 6.28318530718f;
-// Frames per walking cycle, and per sway of the whole body along x.
-constexpr float kGaitPeriod = 16.0f;
-constexpr float kSwayPeriod = 48.0f;
+// Frames per walking cycle, and per sway of the whole body along x. Paced like a person in a
+// 30 fps capture: a limb's far end moves at most about 3 pixels a frame in the default 320x240
+// views (a few pixels a frame at N3DV's resolution), the hips about one.
+constexpr float kGaitPeriod = 40.0f;
+constexpr float kSwayPeriod = 96.0f;
 
 struct PartShape {
   const char* name;
@@ -68,9 +70,9 @@ std::array<glm::mat4, kFigurePartCount> FigurePose(int frame) {
   const float gait = kTwoPi * frame / kGaitPeriod, sway = kTwoPi * frame / kSwayPeriod;
   const glm::vec3 x(1, 0, 0), y(0, 1, 0);
   // The hips: 0.84 m up (two leg segments), swaying along x and turning about y.
-  const glm::mat4 hips = Translate(-1.05f + 0.3f * std::sin(sway), 0.84f, -2.1f) *
-                         Rotate(0.35f * std::sin(sway) + 0.3f, y);
-  const float arm = 0.6f * std::sin(gait), leg = 0.45f * std::sin(gait);
+  const glm::mat4 hips = Translate(-1.05f + 0.2f * std::sin(sway), 0.84f, -2.1f) *
+                         Rotate(0.2f * std::sin(sway) + 0.3f, y);
+  const float arm = 0.35f * std::sin(gait), leg = 0.3f * std::sin(gait);
   std::array<glm::mat4, kFigurePartCount> pose;
   pose[kFigureTorso] = hips * Rotate(0.05f * std::sin(2 * gait), x);
   const glm::mat4& torso = pose[kFigureTorso];
@@ -83,7 +85,7 @@ std::array<glm::mat4, kFigurePartCount> FigurePose(int frame) {
   pose[kFigureUpperArmRight] = torso * Translate(0.25f, 0.52f, 0) *
                                Rotate(2.2f + 0.25f * std::sin(gait), glm::vec3(0, 0, 1));
   pose[kFigureForearmRight] = pose[kFigureUpperArmRight] * Translate(0, -0.30f, 0) *
-                              Rotate(-0.7f * std::sin(2 * gait) - 0.3f, glm::vec3(0, 0, 1));
+                              Rotate(-0.4f * std::sin(2 * gait) - 0.3f, glm::vec3(0, 0, 1));
   pose[kFigureThighLeft] = hips * Translate(-0.1f, 0, 0) * Rotate(-leg, x);
   pose[kFigureShinLeft] = pose[kFigureThighLeft] * Translate(0, -0.42f, 0) *
                           Rotate(0.5f * std::max(0.0f, std::sin(gait)), x);

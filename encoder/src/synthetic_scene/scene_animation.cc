@@ -7,8 +7,8 @@
 namespace m4d {
 namespace {
 
-// The cube turns 9 degrees a frame about a tilted axis.
-constexpr float kCubeTurnPerFrame = 0.157f;
+// The cube turns 3 degrees a frame about a tilted axis.
+constexpr float kCubeTurnPerFrame = 0.0524f;
 
 }  // namespace
 
