@@ -91,6 +91,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->capture_default_str();
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
       ->capture_default_str();
+  cmd->add_option("--gop-psnr-drop", o.gop.max_psnr_drop,
+                  "a new GOP when the training views' PSNR falls this many dB below the "
+                  "keyframe's (0: off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--fixed-gop", o.gop.fixed_length,
                   "fixed GOP of this many frames instead of the adaptive GOP");
   cmd->add_option("--max-gop", o.gop.max_length, "longest GOP")->capture_default_str();
@@ -183,6 +188,7 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
                                   {"adaptive_gop", options.gop.adaptive},
                                   {"fixed_gop", options.gop.fixed_length},
                                   {"gop_threshold", options.gop.threshold},
+                                  {"gop_psnr_drop", options.gop.max_psnr_drop},
                                   {"decoupling", options.ablation.decoupling},
                                   {"motion_estimation", options.ablation.motion_estimation},
                                   {"compensation", options.ablation.compensation},

@@ -50,17 +50,18 @@ SequenceSummary Summarise(const SequenceReport& report) {
 
 void PrintFrameLine(std::FILE* out, const FrameReport& f, bool header) {
   if (header) {
-    std::fprintf(out, "%5s %4s %9s %9s %7s %8s %8s %9s %8s %8s %6s %6s %7s %6s %7s\n", "frame",
+    std::fprintf(out, "%5s %4s %9s %9s %7s %8s %8s %9s %8s %8s %6s %6s %7s %6s %7s %7s\n", "frame",
                  "type", "static KB", "dyn KB", "mlp KB", "grid KB", "comp KB", "total KB",
-                 "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "time s");
+                 "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "train", "time s");
   }
   std::fprintf(
-      out, "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7.2f %6.4f %7.1f\n",
+      out,
+      "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7.2f %6.4f %7.2f %7.1f\n",
       f.frame_index, f.keyframe ? "key" : "inter", Kb(Layer(f, M4D_PACKET_KEYFRAME_STATIC)),
       Kb(Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)), Kb(Layer(f, M4D_PACKET_MLP_WEIGHTS)),
       Kb(Layer(f, M4D_PACKET_MOTION_GRID)), Kb(Layer(f, M4D_PACKET_COMPENSATION)),
       Kb(f.bytes.total()), f.static_count, f.dynamic_count, f.added, f.removed, f.psnr, f.ssim,
-      f.seconds.total());
+      f.training_psnr, f.seconds.total());
   std::fflush(out);
 }
 
@@ -101,6 +102,7 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                       {"added", f.added},
                       {"removed", f.removed},
                       {"gop_ratio", f.ratio},
+                      {"training_psnr", f.training_psnr},
                       {"psnr", f.psnr},
                       {"ssim", f.ssim},
                       {"hash", f.hash},

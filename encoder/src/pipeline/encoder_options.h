@@ -28,9 +28,15 @@ struct AblationSwitches {
 struct GopOptions {
   bool adaptive = true;     // a new GOP when r_t = |dG_t| / |G_{t-1}^dyn| > threshold
   float threshold = 0.15f;  // tau_GOP
-  int fixed_length = 0;     // frames per GOP when not adaptive (0: one GOP)
-  int max_length = 300;     // a keyframe at least this often, adaptive or not
-  int min_length = 2;       // adaptive GOPs are at least this long
+  // Ours, beside r_t: a new GOP also starts when the coded frame's mean PSNR over the training
+  // views falls this many dB below the GOP keyframe's (0: off). Content that appears where no
+  // dynamic Gaussian is near (an object entering the static part of the scene) gets few
+  // compensation candidates, so r_t stays small while the frame loses several dB; and colours
+  // are fixed within a GOP, so shading that changes as parts turn drifts until a keyframe.
+  float max_psnr_drop = 2.5f;
+  int fixed_length = 0;  // frames per GOP when not adaptive (0: one GOP)
+  int max_length = 300;  // a keyframe at least this often, adaptive or not
+  int min_length = 2;    // adaptive GOPs are at least this long
 };
 
 struct EncoderOptions {

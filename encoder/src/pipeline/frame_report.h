@@ -34,7 +34,9 @@ struct FrameReport {
   size_t added = 0;  // compensated Gaussians coded
   size_t removed = 0;
   double ratio = 0;  // r_t of the adaptive GOP (inter frames)
-  double psnr = 0;   // held-out camera, decoded frame (dB); 0 without a test camera
+  // Mean PSNR over the training views of the coded frame (dB), what the adaptive GOP watches.
+  double training_psnr = 0;
+  double psnr = 0;  // held-out camera, decoded frame (dB); 0 without a test camera
   double ssim = 0;
   std::string hash;  // frame hash (bitstream-spec 7) of the encoder's reconstruction
   StageSeconds seconds;

@@ -34,7 +34,7 @@ struct SequenceEncoder::Gop {
   MlpWeights decoded_mlp;  // as the decoder reads it back
   bool mlp_trained = false;
   float scene_extent = 1.0f;
-  FrameReport keyframe_report;
+  FrameReport keyframe_report;  // its training_psnr is what the adaptive GOP compares with
 };
 
 namespace {
@@ -113,6 +113,21 @@ Status CombinedModel(const GaussianSet& static_set, const GaussianSet& dynamic_s
     to.insert(to.end(), from.begin(), from.end());
   }
   return Status::Ok();
+}
+
+// Appends the Gaussians of `from` not flagged in `removed` (null: all of them) to *to.
+void AppendKept(const GaussianSet& from, const std::vector<uint8_t>* removed, GaussianSet* to) {
+  const size_t k = static_cast<size_t>(from.sh_floats());
+  for (size_t i = 0; i < from.size(); ++i) {
+    if (removed && (*removed)[i]) continue;
+    const size_t j = to->size();
+    to->Resize(j + 1);
+    std::copy_n(&from.positions[3 * i], 3, &to->positions[3 * j]);
+    std::copy_n(&from.log_scales[3 * i], 3, &to->log_scales[3 * j]);
+    std::copy_n(&from.rotations[4 * i], 4, &to->rotations[4 * j]);
+    to->opacity_logits[j] = from.opacity_logits[i];
+    std::copy_n(&from.sh[k * i], k, &to->sh[k * j]);
+  }
 }
 
 Status EmptySet(int sh_degree, GaussianSet* set) {
@@ -249,6 +264,8 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
       ReconstructGaussianSet(gop.static_coded, options_.quantization, &gop.static_set));
   M4D_RETURN_IF_ERROR(
       ReconstructGaussianSet(gop.dynamic_coded, options_.quantization, &gop.dynamic_set));
+  M4D_RETURN_IF_ERROR(
+      TrainingPsnr(views, gop.static_set, gop.dynamic_set, &gop.keyframe_report.training_psnr));
   gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
   estimator_->StartGop(options_.seed + static_cast<uint64_t>(frame));
   gop.mlp = estimator_->mlp();
@@ -348,8 +365,17 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   report.ratio = gop.dynamic_set.size() > 0 ? static_cast<double>(report.added) /
                                                   static_cast<double>(gop.dynamic_set.size())
                                             : 0.0;
+  {
+    GaussianSet coded;  // the frame as coded, before the compensation's quantization
+    coded.sh_degree = moved.sh_degree;
+    AppendKept(moved, &compensation.removed, &coded);
+    AppendKept(compensation.added, nullptr, &coded);
+    M4D_RETURN_IF_ERROR(TrainingPsnr(views, gop.static_set, coded, &report.training_psnr));
+  }
+  const double drop = gop.keyframe_report.training_psnr - report.training_psnr;
   if (options_.gop.adaptive && length >= options_.gop.min_length &&
-      report.ratio > options_.gop.threshold) {
+      (report.ratio > options_.gop.threshold ||
+       (options_.gop.max_psnr_drop > 0 && drop > options_.gop.max_psnr_drop))) {
     *restart = true;  // frame becomes the next GOP's keyframe; nothing of it is written
     return Status::Ok();
   }
@@ -400,6 +426,25 @@ Status SequenceEncoder::Restart(int frame) {
   return StartGop(frame, trainer.TakeModel(), Since(start));
 }
 
+RenderSettings SequenceEncoder::Settings() const {
+  RenderSettings settings;
+  settings.threads = options_.threads;
+  settings.sh_degree = options_.sh_degree;
+  std::copy(options_.background, options_.background + 3, settings.background);
+  return settings;
+}
+
+Status SequenceEncoder::TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,
+                                     const GaussianSet& dynamic_set, double* psnr) {
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
+  EvaluationResult result;
+  RenderContext context;
+  M4D_RETURN_IF_ERROR(EvaluateViews(model, views, Settings(), &context, &result));
+  *psnr = result.mean_psnr;
+  return Status::Ok();
+}
+
 Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
                                  const GaussianSet& dynamic_set, FrameReport* report) {
   report->static_count = static_set.size();
@@ -410,10 +455,7 @@ Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, {capture_.test_camera}, &test));
   GaussianModel model;
   M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
-  RenderSettings settings;
-  settings.threads = options_.threads;
-  settings.sh_degree = options_.sh_degree;
-  std::copy(options_.background, options_.background + 3, settings.background);
+  const RenderSettings settings = Settings();
   EvaluationResult result;
   RenderContext context;
   M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, &context, &result));

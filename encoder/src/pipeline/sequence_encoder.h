@@ -4,8 +4,9 @@
 // from the previous frame's decoded state for later ones) is decoupled into static and dynamic
 // sets by the lookahead. Per inter frame t: motion estimation moves frame t-1's *decoded*
 // dynamic set; compensation adds and removes Gaussians; the adaptive GOP rule either codes
-// the frame or starts a new GOP at t. Every packet is decoded by the SDK as it is written and
-// the next frame starts from that decode.
+// the frame or starts a new GOP at t (when r_t exceeds tau_GOP, or when the frame's quality
+// over the training views has fallen too far below the keyframe's). Every packet is decoded by the
+// SDK as it is written and the next frame starts from that decode.
 //
 // The keyframe's packets carry the GOP's shared MLP, which the first inter frame trains, so a
 // keyframe is written just before its first inter frame. An inter frame is decided before any
@@ -25,9 +26,11 @@
 #include "motion/motion_estimation.h"
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
+#include "render/render_settings.h"
 #include "stream/stream_writer.h"
 #include "train/gaussian_model.h"
 #include "train/progress_bar.h"
+#include "train/training_views.h"
 
 namespace m4d {
 
@@ -66,6 +69,10 @@ class SequenceEncoder {
   Status Restart(int frame);
   Status Evaluate(int frame, const GaussianSet& static_set, const GaussianSet& dynamic_set,
                   FrameReport* report);
+  // Mean PSNR of both sets over the views (the adaptive GOP's quality measure).
+  Status TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,
+                      const GaussianSet& dynamic_set, double* psnr);
+  RenderSettings Settings() const;
 
   const Capture& capture_;
   EncoderOptions options_;
