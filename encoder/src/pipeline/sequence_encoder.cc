@@ -410,6 +410,8 @@ Status SequenceEncoder::Restart(int frame) {
   o.learning_rates.position.max_steps = options_.retrain_iterations;
   o.densify_from = std::min(o.densify_from, options_.retrain_iterations / 4);
   o.densify_until = options_.retrain_iterations / 2;
+  // Often: content that appeared (the usual reason for a new GOP) has to grow in a short run.
+  o.densify_interval = std::max(1, options_.retrain_iterations / 20);
   o.opacity_reset_interval = 0;
   o.sh_degree_interval = 0;
   o.start_sh_degree = options_.sh_degree;
