@@ -5,6 +5,7 @@
 #include <cstring>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "stream_test_util.h"
 
@@ -22,7 +23,7 @@ TestStream SmallStream() {
 }
 
 TEST(Api, VersionAndErrorStrings) {
-  EXPECT_STREQ(m4d_version(), "0.2.0");
+  EXPECT_STREQ(m4d_version(), "0.3.0");  // M4D_VERSION_* of m4d.h
   std::set<std::string> seen;
   for (int code = 0; code >= -7; --code) {
     ASSERT_NE(m4d_error_string(code), nullptr);
@@ -180,6 +181,34 @@ TEST(Api, AllocatorHooksServeTheLargeBuffers) {
   EXPECT_EQ(r.hashes, stream.recon_hashes);
   EXPECT_GT(counter.total, 10);
   EXPECT_EQ(counter.live, 0);  // everything returned after close and unref
+}
+
+// m4d.h: frames stay valid after the context is closed; their buffers go back through the
+// hooks (whose cookie the caller keeps alive), not through the closed context's settings.
+TEST(Api, FramesOutliveTheirContext) {
+  const TestStream stream = SmallStream();
+  CountingAllocator counter;
+  M4dSettings s = DefaultSettings();
+  s.allocator = {&counter, CountingAlloc, CountingFree};
+  M4dContext* ctx = nullptr;
+  ASSERT_EQ(m4d_open(&ctx, &s), M4D_OK);
+  std::vector<M4dFrame> frames;
+  for (const Packet& p : stream.packets) {
+    if (m4d_send_packet(ctx, p.data(), p.size()) == M4D_ERR_AGAIN) {
+      frames.emplace_back();
+      ASSERT_EQ(m4d_get_frame(ctx, &frames.back()), M4D_OK);
+      ASSERT_EQ(m4d_send_packet(ctx, p.data(), p.size()), M4D_OK);
+    }
+  }
+  m4d_close(&ctx);
+  std::memset(&s, 0xAB, sizeof(s));  // the settings the context was opened with are gone too
+  ASSERT_GE(frames.size(), 2u);
+  EXPECT_GT(counter.live, 0);
+  for (size_t f = 0; f < frames.size(); ++f) {
+    EXPECT_EQ(HashOf(frames[f]), stream.recon_hashes[f]) << f;
+    m4d_frame_unref(&frames[f]);
+  }
+  EXPECT_EQ(counter.live, 0);
 }
 
 TEST(Api, AllocationFailureIsReportedAndDecodingRecovers) {

@@ -47,7 +47,12 @@ bool ReservedZero(const M4dSettings* s) {
 
 extern "C" {
 
-const char* m4d_version(void) { return "0.2.0"; }
+#define M4D_STRINGIFY_(x) #x
+#define M4D_STRINGIFY(x) M4D_STRINGIFY_(x)
+const char* m4d_version(void) {
+  return M4D_STRINGIFY(M4D_VERSION_MAJOR) "." M4D_STRINGIFY(M4D_VERSION_MINOR) "." M4D_STRINGIFY(
+      M4D_VERSION_PATCH);
+}
 
 const char* m4d_error_string(int code) {
   switch (code) {

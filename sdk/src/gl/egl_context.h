@@ -9,26 +9,27 @@
 #include <string>
 
 #include "common/status.h"
+#include "gl/gl_context.h"
 #include "gl/gl_functions.h"
 
 namespace m4d {
 
-class EglContext {
+class EglContext : public GlContext {
  public:
   // Creates the context and makes it current on the calling thread. M4D_ERR_UNSUPPORTED with
   // the reason when no display, no GLES 3 configuration or no context is available.
   static Status Create(std::unique_ptr<EglContext>* context);
-  ~EglContext();
+  ~EglContext() override;
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
   // A context is current on one thread at a time; GL calls go to the current one.
-  Status MakeCurrent();
-  void ReleaseCurrent();
+  Status MakeCurrent() override;
+  void ReleaseCurrent() override;
 
-  const GlFunctions& gl() const { return gl_; }
+  const GlFunctions& gl() const override { return gl_; }
   // Which display kind was used and the GL renderer, e.g. "surfaceless, llvmpipe (...)".
-  const std::string& description() const { return description_; }
+  const std::string& description() const override { return description_; }
 
  private:
   EglContext() = default;

@@ -76,7 +76,14 @@ namespace m4d {
   X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
-  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)
+  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                                 \
+  X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                           \
+  X(PFNGLBLENDEQUATIONPROC, BlendEquation)                                   \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                       \
+  X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                       \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                                           \
+  X(PFNGLFINISHPROC, Finish)                                                 \
+  X(PFNGLSCISSORPROC, Scissor)
 
 struct GlFunctions {
 #define M4D_GL_MEMBER(type, name) type name = nullptr;

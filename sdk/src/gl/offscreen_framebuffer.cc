@@ -7,7 +7,13 @@ namespace m4d {
 
 Status OffscreenFramebuffer::Create(const GlFunctions& gl, int width, int height, int samples,
                                     std::unique_ptr<OffscreenFramebuffer>* framebuffer) {
-  std::unique_ptr<OffscreenFramebuffer> created(new OffscreenFramebuffer(gl));
+  return Create(gl, width, height, samples, ColorFormat::kRgba8, framebuffer);
+}
+
+Status OffscreenFramebuffer::Create(const GlFunctions& gl, int width, int height, int samples,
+                                    ColorFormat format,
+                                    std::unique_ptr<OffscreenFramebuffer>* framebuffer) {
+  std::unique_ptr<OffscreenFramebuffer> created(new OffscreenFramebuffer(gl, format));
   M4D_RETURN_IF_ERROR(created->Initialize(width, height, samples));
   *framebuffer = std::move(created);
   return Status::Ok();
@@ -37,7 +43,8 @@ Status OffscreenFramebuffer::CreateTarget(int samples, GLuint* framebuffer,
   gl_.GenFramebuffers(1, framebuffer);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
   gl_.GenRenderbuffers(2, renderbuffers);
-  const GLenum formats[2] = {GL_RGBA8, GL_DEPTH_COMPONENT24};
+  const GLenum color = format_ == ColorFormat::kRgba16f ? GL_RGBA16F : GL_RGBA8;
+  const GLenum formats[2] = {color, GL_DEPTH_COMPONENT24};
   const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_DEPTH_ATTACHMENT};
   for (int i = 0; i < 2; ++i) {
     gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
@@ -68,6 +75,22 @@ void OffscreenFramebuffer::Bind() {
 }
 
 Status OffscreenFramebuffer::ReadRgba8(std::vector<uint8_t>* rgba) {
+  const size_t values = static_cast<size_t>(width_) * height_ * 4;
+  if (format_ == ColorFormat::kRgba8) {
+    rgba->resize(values);
+    return ReadPixels(rgba->data());
+  }
+  std::vector<float> pixels(values);
+  M4D_RETURN_IF_ERROR(ReadPixels(pixels.data()));
+  rgba->resize(values);
+  for (size_t i = 0; i < values; ++i) {
+    (*rgba)[i] = static_cast<uint8_t>(std::clamp(pixels[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+  }
+  return Status::Ok();
+}
+
+// Reads width * height RGBA values (bytes or floats, as the colour format) into pixels.
+Status OffscreenFramebuffer::ReadPixels(void* pixels) {
   GLuint read_from = draw_framebuffer_;
   if (samples_ > 1) {
     gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, draw_framebuffer_);
@@ -77,10 +100,10 @@ Status OffscreenFramebuffer::ReadRgba8(std::vector<uint8_t>* rgba) {
     read_from = resolve_framebuffer_;
   }
   gl_.BindFramebuffer(GL_FRAMEBUFFER, read_from);
-  const size_t row_bytes = static_cast<size_t>(width_) * 4;
-  rgba->resize(row_bytes * height_);
+  const bool bytes = format_ == ColorFormat::kRgba8;
+  const size_t row_bytes = static_cast<size_t>(width_) * 4 * (bytes ? 1 : sizeof(float));
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba->data());
+  gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, bytes ? GL_UNSIGNED_BYTE : GL_FLOAT, pixels);
   gl_.BindFramebuffer(GL_FRAMEBUFFER, draw_framebuffer_);
   const GLenum error = gl_.GetError();
   if (error != GL_NO_ERROR) {
@@ -88,9 +111,10 @@ Status OffscreenFramebuffer::ReadRgba8(std::vector<uint8_t>* rgba) {
                   "gl: reading the framebuffer failed (GL error " + std::to_string(error) + ")");
   }
   // GL's row 0 is the bottom one.
+  auto* data = static_cast<uint8_t*>(pixels);
   for (int top = 0, bottom = height_ - 1; top < bottom; ++top, --bottom) {
-    std::swap_ranges(rgba->begin() + top * row_bytes, rgba->begin() + (top + 1) * row_bytes,
-                     rgba->begin() + bottom * row_bytes);
+    std::swap_ranges(data + top * row_bytes, data + (top + 1) * row_bytes,
+                     data + bottom * row_bytes);
   }
   return Status::Ok();
 }

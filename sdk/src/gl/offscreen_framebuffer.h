@@ -1,6 +1,8 @@
-// OffscreenFramebuffer: a framebuffer object with RGBA8 colour and 24-bit depth
-// renderbuffers, multisampled on request, that a headless context renders into, and the
-// read-back of its pixels (multisampling resolved, top row first).
+// OffscreenFramebuffer: a framebuffer object with RGBA8 (or half-float RGBA) colour and 24-bit
+// depth renderbuffers, multisampled on request, that a headless context renders into, and the
+// read-back of its pixels (multisampling resolved, top row first). Half floats keep many
+// blended layers from accumulating 8-bit rounding; they need EXT_color_buffer_half_float or
+// EXT_color_buffer_float.
 #ifndef M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
 #define M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
 
@@ -13,6 +15,8 @@
 
 namespace m4d {
 
+enum class ColorFormat { kRgba8, kRgba16f };
+
 class OffscreenFramebuffer {
  public:
   // Creates the buffers in the current context, whose function table `gl` must outlive the
@@ -21,6 +25,9 @@ class OffscreenFramebuffer {
   // when the driver rejects the framebuffer.
   static Status Create(const GlFunctions& gl, int width, int height, int samples,
                        std::unique_ptr<OffscreenFramebuffer>* framebuffer);
+  // The same with a colour format; M4D_ERR_UNSUPPORTED when the driver cannot render to it.
+  static Status Create(const GlFunctions& gl, int width, int height, int samples,
+                       ColorFormat format, std::unique_ptr<OffscreenFramebuffer>* framebuffer);
   // Deletes the GL objects: the context must be current.
   ~OffscreenFramebuffer();
   OffscreenFramebuffer(const OffscreenFramebuffer&) = delete;
@@ -28,19 +35,23 @@ class OffscreenFramebuffer {
 
   // Binds for drawing and sets the viewport to the whole framebuffer.
   void Bind();
-  // Waits for rendering and reads width * height RGBA pixels, row 0 at the top.
+  // Waits for rendering and reads width * height RGBA pixels, row 0 at the top (half floats
+  // clamped to [0, 1] and rounded to the nearest byte).
   Status ReadRgba8(std::vector<uint8_t>* rgba);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }
+  ColorFormat format() const { return format_; }
 
  private:
-  explicit OffscreenFramebuffer(const GlFunctions& gl) : gl_(gl) {}
+  OffscreenFramebuffer(const GlFunctions& gl, ColorFormat format) : gl_(gl), format_(format) {}
   Status Initialize(int width, int height, int samples);
   Status CreateTarget(int samples, GLuint* framebuffer, GLuint renderbuffers[2]);
+  Status ReadPixels(void* pixels);
 
   const GlFunctions& gl_;
+  const ColorFormat format_;
   int width_ = 0;
   int height_ = 0;
   int samples_ = 0;

@@ -1,0 +1,141 @@
+#include "gl/splat_draw_program.h"
+
+#include <string>
+
+#include "gl/shader_program.h"
+
+namespace m4d {
+namespace {
+
+// u_viewport: x, y, width, height of the image in window coordinates. Image pixel (u, v)
+// with v down maps to window (x + u, y + height - v).
+constexpr char kSplatVertexShader[] = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec4 a_mean_extent;
+layout(location = 1) in vec4 a_conic_opacity;
+layout(location = 2) in vec4 a_color;
+uniform vec4 u_viewport;
+flat out vec2 v_mean;
+flat out vec4 v_conic_opacity;
+flat out vec3 v_color;
+void main() {
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+  vec2 pixel = a_mean_extent.xy + corner * a_mean_extent.zw;
+  vec2 ndc = vec2(2.0 * pixel.x / u_viewport.z - 1.0, 1.0 - 2.0 * pixel.y / u_viewport.w);
+  gl_Position = vec4(ndc, 0.0, 1.0);
+  v_mean = a_mean_extent.xy;
+  v_conic_opacity = a_conic_opacity;
+  v_color = a_color.rgb;
+}
+)";
+
+constexpr char kSplatFragmentShader[] = R"(#version 300 es
+precision highp float;
+uniform vec4 u_viewport;
+flat in vec2 v_mean;
+flat in vec4 v_conic_opacity;
+flat in vec3 v_color;
+out vec4 colour;
+void main() {
+  vec2 pixel = vec2(gl_FragCoord.x - u_viewport.x, u_viewport.y + u_viewport.w - gl_FragCoord.y);
+  vec2 d = v_mean - pixel;
+  vec3 conic = v_conic_opacity.xyz;
+  float power = -0.5 * (conic.x * d.x * d.x + conic.z * d.y * d.y) - conic.y * d.x * d.y;
+  if (power > 0.0) discard;
+  float alpha = min(0.99, v_conic_opacity.w * exp(power));
+  if (alpha < 1.0 / 255.0) discard;
+  colour = vec4(v_color * alpha, alpha);
+}
+)";
+
+constexpr char kBackgroundVertexShader[] = R"(#version 300 es
+void main() {
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+  gl_Position = vec4(corner, 0.0, 1.0);
+}
+)";
+
+constexpr char kBackgroundFragmentShader[] = R"(#version 300 es
+precision highp float;
+uniform vec3 u_background;
+out vec4 colour;
+void main() { colour = vec4(u_background, 1.0); }
+)";
+
+}  // namespace
+
+Status SplatDrawProgram::Create(const GlFunctions& gl, std::unique_ptr<SplatDrawProgram>* program) {
+  std::unique_ptr<SplatDrawProgram> created(new SplatDrawProgram(gl));
+  M4D_RETURN_IF_ERROR(created->Initialize());
+  *program = std::move(created);
+  return Status::Ok();
+}
+
+Status SplatDrawProgram::Initialize() {
+  M4D_RETURN_IF_ERROR(
+      CompileShaderProgram(gl_, kSplatVertexShader, kSplatFragmentShader, &program_));
+  M4D_RETURN_IF_ERROR(CompileShaderProgram(gl_, kBackgroundVertexShader, kBackgroundFragmentShader,
+                                           &background_program_));
+  viewport_location_ = gl_.GetUniformLocation(program_, "u_viewport");
+  background_location_ = gl_.GetUniformLocation(background_program_, "u_background");
+  gl_.GenBuffers(1, &instance_buffer_);
+  gl_.GenVertexArrays(1, &vertex_array_);
+  gl_.GenVertexArrays(1, &empty_vertex_array_);
+  gl_.BindVertexArray(vertex_array_);
+  gl_.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  for (GLuint a = 0; a < 3; ++a) {
+    gl_.EnableVertexAttribArray(a);
+    gl_.VertexAttribPointer(a, 4, GL_FLOAT, GL_FALSE, sizeof(SplatInstance),
+                            reinterpret_cast<const void*>(a * 4 * sizeof(float)));
+    gl_.VertexAttribDivisor(a, 1);
+  }
+  gl_.BindVertexArray(0);
+  const GLenum error = gl_.GetError();
+  if (error != GL_NO_ERROR) {
+    return Status(M4D_ERR_UNSUPPORTED,
+                  "gl: creating the splat program failed (GL error " + std::to_string(error) + ")");
+  }
+  return Status::Ok();
+}
+
+SplatDrawProgram::~SplatDrawProgram() {
+  gl_.DeleteVertexArrays(1, &vertex_array_);
+  gl_.DeleteVertexArrays(1, &empty_vertex_array_);
+  gl_.DeleteBuffers(1, &instance_buffer_);
+  gl_.DeleteProgram(program_);
+  gl_.DeleteProgram(background_program_);
+}
+
+void SplatDrawProgram::Upload(const SplatInstance* instances, size_t count) {
+  gl_.BindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  // A new store each frame: the driver need not wait for draws still reading the old one.
+  gl_.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(count * sizeof(SplatInstance)), instances,
+                 GL_STREAM_DRAW);
+  count_ = count;
+}
+
+void SplatDrawProgram::Draw(const int viewport[4], const float background[3], bool clear) {
+  gl_.Disable(GL_DEPTH_TEST);
+  gl_.Disable(GL_STENCIL_TEST);
+  gl_.Disable(GL_CULL_FACE);
+  if (clear) {
+    gl_.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl_.Clear(GL_COLOR_BUFFER_BIT);
+  }
+  gl_.Enable(GL_BLEND);
+  gl_.BlendEquation(GL_FUNC_ADD);
+  gl_.BlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  gl_.UseProgram(program_);
+  gl_.Uniform4f(viewport_location_, static_cast<float>(viewport[0]),
+                static_cast<float>(viewport[1]), static_cast<float>(viewport[2]),
+                static_cast<float>(viewport[3]));
+  gl_.BindVertexArray(vertex_array_);
+  if (count_ > 0) gl_.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count_));
+  gl_.UseProgram(background_program_);
+  gl_.Uniform3fv(background_location_, 1, background);
+  gl_.BindVertexArray(empty_vertex_array_);
+  gl_.DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  gl_.BindVertexArray(0);
+}
+
+}  // namespace m4d

@@ -1,0 +1,83 @@
+#include "gl/splat_instances.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "render/projection_constants.h"
+#include "render/radix_sort.h"
+#include "render/splat_projection.h"
+
+namespace m4d {
+namespace {
+
+constexpr size_t kChunk = 1024;  // Gaussians per task
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+uint32_t DepthKey(float depth) {
+  uint32_t key;
+  std::memcpy(&key, &depth, sizeof(key));  // depth > near plane > 0: bits sort like floats
+  return key;
+}
+
+}  // namespace
+
+Status SplatInstanceBuilder::Build(const Camera& camera, const GaussianLayerView* layers,
+                                   int layer_count, int sh_degree,
+                                   std::vector<SplatInstance>* instances,
+                                   SplatInstanceTimings* timings) {
+  M4D_RETURN_IF_ERROR(ValidateCamera(camera));
+  if (sh_degree < 0 || sh_degree > 3) {
+    return Status(M4D_ERR_INVALID_ARG, "renderer: SH degree must be 0..3");
+  }
+  Clock::time_point start = Clock::now();
+  size_t total = 0;
+  for (int l = 0; l < layer_count; ++l) total += layers[l].count;
+  projected_.Resize(total);
+  const ProjectionConstants pc = MakeProjectionConstants(camera);
+  ParallelForChunks(&pool_, total, kChunk, [&](size_t begin, size_t end, int) {
+    size_t offset = 0;
+    for (int l = 0; l < layer_count; ++l) {
+      const size_t lo = std::max(begin, offset), hi = std::min(end, offset + layers[l].count);
+      if (lo < hi)
+        ProjectSplats(pc, layers[l], sh_degree, lo - offset, hi - offset, offset, &projected_);
+      offset += layers[l].count;
+    }
+  });
+  keys_.clear();
+  order_.clear();
+  for (size_t i = 0; i < total; ++i) {
+    if (projected_.radius[i] == 0.0f) continue;
+    keys_.push_back(DepthKey(projected_.depth[i]));
+    order_.push_back(static_cast<uint32_t>(i));
+  }
+  timings->project_ms = MillisecondsSince(start);
+
+  start = Clock::now();
+  RadixSortPairs(&keys_, &order_, &key_scratch_, &order_scratch_);
+  instances->resize(order_.size());
+  ParallelForChunks(&pool_, order_.size(), kChunk, [&](size_t begin, size_t end, int) {
+    for (size_t k = begin; k < end; ++k) {
+      const size_t i = order_[k];
+      SplatInstance& s = (*instances)[k];
+      s.mean[0] = projected_.mean_x[i];
+      s.mean[1] = projected_.mean_y[i];
+      s.extent[0] = projected_.extent_x[i];
+      s.extent[1] = projected_.extent_y[i];
+      s.conic[0] = projected_.conic_a[i];
+      s.conic[1] = projected_.conic_b[i];
+      s.conic[2] = projected_.conic_c[i];
+      s.opacity = projected_.opacity[i];
+      for (int c = 0; c < 3; ++c) s.color[c] = projected_.color[c][i];
+    }
+  });
+  timings->sort_ms = MillisecondsSince(start);
+  return Status::Ok();
+}
+
+}  // namespace m4d
