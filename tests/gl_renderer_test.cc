@@ -20,6 +20,7 @@
 #include "render/render_context.h"
 #include "render/splat_renderer.h"
 #include "splat_test_scenes.h"
+#include "stream/synthetic_content.h"
 #include "stream_test_util.h"
 
 namespace m4d {
@@ -208,6 +209,42 @@ TEST_F(GlRendererTest, RejectsBadArguments) {
   EXPECT_EQ(m4d_renderer_open(nullptr, &s), M4D_ERR_INVALID_ARG);
   m4d_renderer_close(nullptr);
   EXPECT_NE(std::string(m4d_renderer_description(renderer_)), "");
+}
+
+// Dense content (a ball covered about ten times over, as trained surfaces are) accumulates
+// many 8-bit blends per pixel; they still agree.
+TEST_F(GlRendererTest, DenseContentAgrees) {
+  const float centre[3] = {0, 0, 0};
+  GaussianSet ball = SyntheticGaussianSet(8000, 3, 11, centre, 1.2f);
+  const float spacing = std::sqrt(4.0f * 3.14159265f * 1.44f / 8000.0f);
+  for (size_t i = 0; i < ball.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      ball.log_scales[3 * i + a] = std::log(0.7f * spacing) + 0.3f * std::sin(float(5 * i + a));
+    }
+  }
+  std::unique_ptr<GlSplatRenderer> renderer;
+  GlRendererOptions options;
+  options.threads = 2;
+  std::copy(kBackground, kBackground + 3, options.background);
+  ASSERT_TRUE(GlSplatRenderer::Create(options, &renderer).ok());
+  const GaussianLayerView layer = LayerView(ball);
+  ASSERT_TRUE(renderer->Upload(&layer, 1).ok());
+  for (const Camera& camera : RingCameras()) {
+    ASSERT_TRUE(renderer->Draw(camera).ok());
+    std::vector<uint8_t> gl(3 * kWidth * kHeight);
+    ASSERT_TRUE(renderer->ReadRgb(gl.data(), gl.size()).ok());
+    RenderSettings settings;
+    settings.threads = 2;
+    std::copy(kBackground, kBackground + 3, settings.background);
+    RenderContext context;
+    ASSERT_TRUE(RenderForward(camera, &layer, 1, settings, nullptr, &context).ok());
+    std::vector<uint8_t> cpu(gl.size());
+    for (size_t i = 0; i < cpu.size(); ++i) {
+      cpu[i] = static_cast<uint8_t>(std::clamp(context.color[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
+    EXPECT_GT(Covered(cpu), static_cast<size_t>(kWidth * kHeight / 10));
+    EXPECT_GE(Psnr(gl, cpu), 40.0);
+  }
 }
 
 // The fallback context renders the same image through the same code.

@@ -114,21 +114,11 @@ Status GlSplatRenderer::Upload(const GaussianLayerView* layers, int layer_count)
   return Status::Ok();
 }
 
-// Half floats when the driver renders to them (EXT_color_buffer_float / half_float); else
-// RGBA8.
 Status GlSplatRenderer::HeadlessTarget(int width, int height) {
   if (framebuffer_ && framebuffer_->width() == width && framebuffer_->height() == height) {
     return Status::Ok();
   }
   framebuffer_.reset();
-  if (color_format_ == ColorFormat::kRgba16f) {
-    const Status half =
-        OffscreenFramebuffer::Create(*gl_, width, height, 0, ColorFormat::kRgba16f, &framebuffer_);
-    if (half.ok()) return Status::Ok();
-    if (half.code() != M4D_ERR_UNSUPPORTED) return half;
-    color_format_ = ColorFormat::kRgba8;
-    framebuffer_.reset();
-  }
   return OffscreenFramebuffer::Create(*gl_, width, height, 0, ColorFormat::kRgba8, &framebuffer_);
 }
 

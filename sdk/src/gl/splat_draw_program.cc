@@ -7,44 +7,50 @@
 namespace m4d {
 namespace {
 
-// u_viewport: x, y, width, height of the image in window coordinates. Image pixel (u, v)
-// with v down maps to window (x + u, y + height - v).
+// u_viewport: x, y, width, height of the image in window coordinates; image pixel (u, v), v
+// down, maps to window (x + u, y + height - v). The quad's corners are (+-1, +-1) in units of
+// the ellipse's half axes at k. v_q: the fragment's offset in standard deviations along the
+// axes, so that -0.5 |v_q|^2 = -0.5 d^T conic d, the reference's power; v_d: its offset in
+// pixels, for the reference's visited box.
 constexpr char kSplatVertexShader[] = R"(#version 300 es
 precision highp float;
-layout(location = 0) in vec4 a_mean_extent;
-layout(location = 1) in vec4 a_conic_opacity;
-layout(location = 2) in vec4 a_color;
+layout(location = 0) in vec4 a_mean_axis;
+layout(location = 1) in vec4 a_minor_k_extent;
+layout(location = 2) in vec4 a_color_opacity;
 uniform vec4 u_viewport;
-flat out vec2 v_mean;
-flat out vec4 v_conic_opacity;
-flat out vec3 v_color;
+out vec2 v_q;
+out vec2 v_d;
+flat out vec2 v_extent;
+flat out vec4 v_color_opacity;
 void main() {
   vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
-  vec2 pixel = a_mean_extent.xy + corner * a_mean_extent.zw;
-  vec2 ndc = vec2(2.0 * pixel.x / u_viewport.z - 1.0, 1.0 - 2.0 * pixel.y / u_viewport.w);
-  gl_Position = vec4(ndc, 0.0, 1.0);
-  v_mean = a_mean_extent.xy;
-  v_conic_opacity = a_conic_opacity;
-  v_color = a_color.rgb;
+  vec2 major = a_mean_axis.zw;
+  float major_length = length(major);
+  vec2 minor = major_length > 0.0 ? vec2(-major.y, major.x) * (a_minor_k_extent.x / major_length)
+                                  : vec2(0.0);
+  vec2 offset = corner.x * major + corner.y * minor;
+  vec2 pixel = a_mean_axis.xy + offset;
+  gl_Position = vec4(2.0 * pixel.x / u_viewport.z - 1.0, 1.0 - 2.0 * pixel.y / u_viewport.w,
+                     0.0, 1.0);
+  v_q = corner * a_minor_k_extent.y;
+  v_d = offset;
+  v_extent = a_minor_k_extent.zw;
+  v_color_opacity = a_color_opacity;
 }
 )";
 
 constexpr char kSplatFragmentShader[] = R"(#version 300 es
 precision highp float;
-uniform vec4 u_viewport;
-flat in vec2 v_mean;
-flat in vec4 v_conic_opacity;
-flat in vec3 v_color;
+in vec2 v_q;
+in vec2 v_d;
+flat in vec2 v_extent;
+flat in vec4 v_color_opacity;
 out vec4 colour;
 void main() {
-  vec2 pixel = vec2(gl_FragCoord.x - u_viewport.x, u_viewport.y + u_viewport.w - gl_FragCoord.y);
-  vec2 d = v_mean - pixel;
-  vec3 conic = v_conic_opacity.xyz;
-  float power = -0.5 * (conic.x * d.x * d.x + conic.z * d.y * d.y) - conic.y * d.x * d.y;
-  if (power > 0.0) discard;
-  float alpha = min(0.99, v_conic_opacity.w * exp(power));
+  if (any(greaterThan(abs(v_d), v_extent))) discard;
+  float alpha = min(0.99, v_color_opacity.a * exp(-0.5 * dot(v_q, v_q)));
   if (alpha < 1.0 / 255.0) discard;
-  colour = vec4(v_color * alpha, alpha);
+  colour = vec4(v_color_opacity.rgb * alpha, alpha);
 }
 )";
 

@@ -1,11 +1,13 @@
-// SplatDrawProgram: the GL half of the renderer. One instanced quad per splat, covering its
-// extent box; the fragment shader evaluates the reference rasterizer's alpha at the pixel
-// centre (render/splat_alpha.h: power, the 0.99 cap, the 1/255 cut) and outputs premultiplied
-// colour, blended front to back ("under": dst += (1 - dst_alpha) src) into a target cleared
-// to zero; a last full-viewport quad composites the background the same way, so the result
-// is C + T_final * background as in the reference. Unlike the reference, a pixel does not
-// stop once its transmittance falls below 1e-4: what it would have skipped weighs less than
-// 1e-4.
+// SplatDrawProgram: the GL half of the renderer. One instanced quad per splat, laid along the
+// axes of its ellipse (splat_instances.h); the fragment shader evaluates the reference rasterizer's
+// alpha at the pixel centre (render/splat_alpha.h: power, the 0.99 cap, the 1/255 cut, and the
+// reference's visited box around the mean) and outputs premultiplied colour, blended front to back
+// ("under": dst += (1 - dst_alpha) src) into a target cleared to zero; a last full-viewport quad
+// composites the background the same way, so the result is C + T_final * background as in the
+// reference. Unlike the reference, a pixel does not stop once its transmittance falls below 1e-4
+// (what it would skip weighs less than that; chunked early termination through the depth test was
+// tried and saved nothing on llvmpipe, where most overdraw is the many layers of one surface rather
+// than hidden surfaces).
 #ifndef M4D_GL_SPLAT_DRAW_PROGRAM_H_
 #define M4D_GL_SPLAT_DRAW_PROGRAM_H_
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include "render/projection_constants.h"
@@ -17,6 +18,27 @@ using Clock = std::chrono::steady_clock;
 
 double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The axes of the ellipse d^T conic d <= k^2 (see SplatInstance).
+void EllipseAxes(float a, float b, float c, float opacity, SplatInstance* s) {
+  const float inv_det = 1.0f / (a * c - b * b);  // covariance = conic^-1
+  const float xx = c * inv_det, xy = -b * inv_det, yy = a * inv_det;
+  const float mid = 0.5f * (xx + yy);
+  const float disc = std::sqrt(std::max(0.0f, mid * mid - (xx * yy - xy * xy)));
+  const float major = mid + disc, minor = std::max(mid - disc, 1e-12f);
+  float ex = xy, ey = major - xx;  // eigenvector of the major eigenvalue
+  float len = std::sqrt(ex * ex + ey * ey);
+  if (!(len > 1e-12f * major)) {
+    ex = xx >= yy ? 1.0f : 0.0f;
+    ey = 1.0f - ex;
+    len = 1.0f;
+  }
+  s->k = std::sqrt(std::max(0.0f, 2.0f * std::log(255.0f * opacity) + 0.05f));
+  const float h = s->k * std::sqrt(major) / len;
+  s->axis[0] = ex * h;
+  s->axis[1] = ey * h;
+  s->minor = s->k * std::sqrt(minor);
 }
 
 uint32_t DepthKey(float depth) {
@@ -69,10 +91,9 @@ Status SplatInstanceBuilder::Build(const Camera& camera, const GaussianLayerView
       s.mean[1] = projected_.mean_y[i];
       s.extent[0] = projected_.extent_x[i];
       s.extent[1] = projected_.extent_y[i];
-      s.conic[0] = projected_.conic_a[i];
-      s.conic[1] = projected_.conic_b[i];
-      s.conic[2] = projected_.conic_c[i];
       s.opacity = projected_.opacity[i];
+      EllipseAxes(projected_.conic_a[i], projected_.conic_b[i], projected_.conic_c[i], s.opacity,
+                  &s);
       for (int c = 0; c < 3; ++c) s.color[c] = projected_.color[c][i];
     }
   });

@@ -18,14 +18,18 @@
 
 namespace m4d {
 
-// One splat as the vertex shader reads it (three vec4 attributes).
+// One splat as the vertex shader reads it (three vec4 attributes). The splat is drawn as the
+// rectangle around the ellipse where its alpha can reach 1/255, d^T conic d <= k^2 with
+// k^2 = 2 ln(255 opacity) (+0.05, as the reference's extent), laid along the ellipse's axes:
+// fewer fragments than the axis-aligned box for elongated, tilted splats.
 struct SplatInstance {
   float mean[2];    // projected mean (u, v) in pixels, row 0 at the top
-  float extent[2];  // half extents of the quad along u and v, in pixels
-  float conic[3];   // inverse 2D covariance [[a, b], [b, c]]
+  float axis[2];    // the ellipse's major half axis at k, in pixels
+  float minor;      // its minor half length at k, in pixels
+  float k;          // the ellipse's size in standard deviations
+  float extent[2];  // the reference's visited box: |pixel - mean| <= extent along u and v
+  float color[3];   // SH colour + 0.5, clamped at 0
   float opacity;
-  float color[3];  // SH colour + 0.5, clamped at 0
-  float unused = 0;
 };
 static_assert(sizeof(SplatInstance) == 12 * sizeof(float), "three vec4 per instance");
 
