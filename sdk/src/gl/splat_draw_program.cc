@@ -10,8 +10,9 @@ namespace {
 // u_viewport: x, y, width, height of the image in window coordinates; image pixel (u, v), v
 // down, maps to window (x + u, y + height - v). The quad's corners are (+-1, +-1) in units of
 // the ellipse's half axes at k. v_q: the fragment's offset in standard deviations along the
-// axes, so that -0.5 |v_q|^2 = -0.5 d^T conic d, the reference's power; v_d: its offset in
-// pixels, for the reference's visited box.
+// axes scaled by sqrt(0.5 log2 e), so that 2^-|v_q|^2 = exp(-0.5 d^T conic d), the reference's
+// alpha falloff (exp2 is the cheaper one on llvmpipe); v_d: its offset in pixels, for the
+// reference's visited box.
 constexpr char kSplatVertexShader[] = R"(#version 300 es
 precision highp float;
 layout(location = 0) in vec4 a_mean_axis;
@@ -32,7 +33,7 @@ void main() {
   vec2 pixel = a_mean_axis.xy + offset;
   gl_Position = vec4(2.0 * pixel.x / u_viewport.z - 1.0, 1.0 - 2.0 * pixel.y / u_viewport.w,
                      0.0, 1.0);
-  v_q = corner * a_minor_k_extent.y;
+  v_q = corner * (a_minor_k_extent.y * 0.84932180);
   v_d = offset;
   v_extent = a_minor_k_extent.zw;
   v_color_opacity = a_color_opacity;
@@ -48,7 +49,7 @@ flat in vec4 v_color_opacity;
 out vec4 colour;
 void main() {
   if (any(greaterThan(abs(v_d), v_extent))) discard;
-  float alpha = min(0.99, v_color_opacity.a * exp(-0.5 * dot(v_q, v_q)));
+  float alpha = min(0.99, v_color_opacity.a * exp2(-dot(v_q, v_q)));
   if (alpha < 1.0 / 255.0) discard;
   colour = vec4(v_color_opacity.rgb * alpha, alpha);
 }
