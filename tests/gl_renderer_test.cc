@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/egl_context.h"
 #include "gl/gl_splat_renderer.h"
 #include "gl/osmesa_context.h"
 #include "m4d/m4d.h"
@@ -209,6 +210,37 @@ TEST_F(GlRendererTest, RejectsBadArguments) {
   EXPECT_EQ(m4d_renderer_open(nullptr, &s), M4D_ERR_INVALID_ARG);
   m4d_renderer_close(nullptr);
   EXPECT_NE(std::string(m4d_renderer_description(renderer_)), "");
+}
+
+// In the caller's context (its own EGL context and framebuffer here): the same image as
+// headless, through the public API.
+TEST_F(GlRendererTest, DrawsInTheCallersContext) {
+  const Camera camera = RingCameras()[2];
+  const std::vector<uint8_t> headless = Draw(frames_[4], M4D_LAYER_ALL, camera);
+  std::unique_ptr<EglContext> context;
+  ASSERT_TRUE(EglContext::Create(&context).ok());
+  std::unique_ptr<OffscreenFramebuffer> target;
+  ASSERT_TRUE(OffscreenFramebuffer::Create(context->gl(), kWidth, kHeight, 0, &target).ok());
+  target->Bind();
+  M4dRendererSettings s;
+  m4d_renderer_default_settings(&s);
+  s.context = M4D_RENDER_CURRENT_CONTEXT;
+  s.threads = 2;
+  std::copy(kBackground, kBackground + 3, s.background);
+  M4dRenderer* in_context = nullptr;
+  ASSERT_EQ(m4d_renderer_open(&in_context, &s), M4D_OK);
+  ASSERT_EQ(m4d_renderer_upload(in_context, &frames_[4], M4D_LAYER_ALL), M4D_OK);
+  const M4dRenderCamera api = ToApiCamera(camera);
+  ASSERT_EQ(m4d_renderer_draw(in_context, &api), M4D_OK) << m4d_renderer_last_error(in_context);
+  std::vector<uint8_t> unused(3 * kWidth * kHeight);
+  EXPECT_EQ(m4d_renderer_read_rgb(in_context, unused.data(), unused.size()), M4D_ERR_INVALID_ARG);
+  std::vector<uint8_t> rgba;
+  ASSERT_TRUE(target->ReadRgba8(&rgba).ok());
+  std::vector<uint8_t> rgb(3 * kWidth * kHeight);
+  for (size_t p = 0; p < rgb.size() / 3; ++p) std::copy_n(&rgba[4 * p], 3, &rgb[3 * p]);
+  EXPECT_GE(Psnr(rgb, headless), 60.0);
+  m4d_renderer_close(&in_context);
+  target.reset();
 }
 
 // Dense content (a ball covered about ten times over, as trained surfaces are) accumulates
