@@ -1,10 +1,13 @@
 // m4d: the reference encoder's command line. Subcommands: scene (write the built-in
-// synthetic scene), train (one frame's 3D Gaussians), encode (a multi-view video to a stream).
+// synthetic scene), train (one frame's 3D Gaussians), encode (a multi-view video to a stream),
+// rd (an RD sweep over lambda_2), ablate (the paper's ablation study).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "ablate_command.h"
 #include "encode_command.h"
 #include "m4d/m4d.h"
+#include "rd_command.h"
 #include "scene_command.h"
 #include "train_command.h"
 
@@ -16,6 +19,8 @@ int main(int argc, char** argv) {
   m4d::AddSceneCommand(&app, &exit_code);
   m4d::AddTrainCommand(&app, &exit_code);
   m4d::AddEncodeCommand(&app, &exit_code);
+  m4d::AddRdCommand(&app, &exit_code);
+  m4d::AddAblateCommand(&app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

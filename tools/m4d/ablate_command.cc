@@ -1,0 +1,129 @@
+#include "ablate_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command_status.h"
+#include "rd_sweep.h"
+
+namespace m4d {
+namespace {
+
+struct AblateArguments {
+  EncodeArguments encode;
+  std::string dir = "out/ablate";
+  std::vector<double> lambdas = PaperLambdas();
+  int fixed_gop = 50;  // the paper's fixed GOP length
+};
+
+struct Ablation {
+  const char* name;   // file names
+  const char* label;  // the table's
+  std::function<void(EncoderOptions*)> apply;
+};
+
+std::vector<Ablation> Ablations(int fixed_gop) {
+  return {{"full", "full method", [](EncoderOptions*) {}},
+          {"no_decoupling", "no decoupling (all dynamic)",
+           [](EncoderOptions* o) { o->ablation.decoupling = false; }},
+          {"no_motion", "no motion estimation",
+           [](EncoderOptions* o) { o->ablation.motion_estimation = false; }},
+          {"no_compensation", "no compensation",
+           [](EncoderOptions* o) { o->ablation.compensation = false; }},
+          {"fixed_gop", "fixed GOP",
+           [fixed_gop](EncoderOptions* o) {
+             o->gop.adaptive = false;
+             o->gop.fixed_length = fixed_gop;
+           }},
+          {"no_rate", "rate term off", [](EncoderOptions* o) { o->ablation.rate_term = false; }}};
+}
+
+struct Row {
+  std::string label;
+  double kb_per_frame = 0, kb_per_inter = 0, psnr = 0, inter_psnr = 0;
+  bool has_bd = false;
+  BjontegaardDelta bd;
+};
+
+Row Summarise(const RdCurve& curve, const RdCurve& full) {
+  Row row;
+  row.label = curve.label;
+  for (const RdPoint& p : curve.points) {
+    row.kb_per_frame += p.summary.kb_per_frame / curve.points.size();
+    row.kb_per_inter += p.summary.kb_per_inter_frame / curve.points.size();
+    row.psnr += p.summary.psnr / curve.points.size();
+    row.inter_psnr += p.inter_psnr / curve.points.size();
+  }
+  if (&curve != &full && curve.points.size() >= 2) {
+    row.has_bd = ComputeBjontegaard(RatePoints(full), RatePoints(curve), &row.bd).ok();
+  }
+  return row;
+}
+
+Status RunAblate(AblateArguments args) {
+  std::error_code ec;
+  std::filesystem::create_directories(args.dir, ec);
+  if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.dir);
+  M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.dir, &args.encode));
+  std::vector<RdCurve> curves;
+  for (const Ablation& a : Ablations(args.fixed_gop)) {
+    EncodeArguments run = args.encode;
+    a.apply(&run.encoder);
+    curves.emplace_back();
+    curves.back().label = a.label;
+    M4D_RETURN_IF_ERROR(RunSweep(run, args.lambdas, args.dir, a.name, &curves.back()));
+  }
+  std::printf("\nmeans over lambda_2 = ");
+  for (double l : args.lambdas) std::printf("%g ", l);
+  std::printf("\n%-30s %10s %10s %9s %11s %10s %9s\n", "configuration", "KB/frame", "KB/inter",
+              "PSNR", "inter PSNR", "BD-rate", "BD-PSNR");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const RdCurve& curve : curves) {
+    const Row r = Summarise(curve, curves[0]);
+    std::printf("%-30s %10.2f %10.2f %9.2f %11.2f", r.label.c_str(), r.kb_per_frame, r.kb_per_inter,
+                r.psnr, r.inter_psnr);
+    if (r.has_bd) {
+      std::printf(" %9.1f%% %9.2f\n", r.bd.rate_percent, r.bd.psnr_db);
+    } else {
+      std::printf(" %10s %9s\n", &curve == &curves[0] ? "anchor" : "n/a", "");
+    }
+    nlohmann::json row = RdCurveJson(curve);
+    if (r.has_bd) row["bd_rate_percent"] = r.bd.rate_percent, row["bd_psnr_db"] = r.bd.psnr_db;
+    rows.push_back(row);
+  }
+  const std::filesystem::path dir(args.dir);
+  std::ofstream((dir / "ablate.json").string()) << rows.dump(2) << "\n";
+  const Status plot = PlotRdCurves(curves, (dir / "ablate.png").string());
+  if (!plot.ok()) std::fprintf(stderr, "m4d ablate: no plot: %s\n", plot.message().c_str());
+  std::printf(
+      "\nBD against the full method (PCHIP over KB per frame, keyframes included); "
+      "n/a: fewer than two rate points or no common range\nreport %s, plot %s\n",
+      (dir / "ablate.json").c_str(), (dir / "ablate.png").c_str());
+  return Status::Ok();
+}
+
+}  // namespace
+
+void AddAblateCommand(CLI::App* app, int* exit_code) {
+  auto args = std::make_shared<AblateArguments>();
+  CLI::App* cmd = app->add_subcommand(
+      "ablate", "the paper's ablations swept over lambda_2, with BD-rate against the full method");
+  AddCaptureArguments(cmd, &args->encode.capture);
+  AddEncoderOptions(cmd, &args->encode);
+  cmd->add_option("-o,--output-dir", args->dir, "streams, reports and plots go here")
+      ->capture_default_str();
+  cmd->add_option("--lambdas", args->lambdas, "rate weights lambda_2 (default: the paper's)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--fixed-gop-length", args->fixed_gop, "GOP length of the fixed-GOP ablation")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->callback([args, exit_code]() { *exit_code = ReportStatus("ablate", RunAblate(*args)); });
+}
+
+}  // namespace m4d

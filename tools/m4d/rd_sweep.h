@@ -1,0 +1,57 @@
+// RD sweeps for `m4d rd` and `m4d ablate`: the same encode at several rate weights lambda_2,
+// all starting from one first keyframe (its training does not depend on lambda_2, so it is
+// trained once), and what the reports need from each run.
+#ifndef M4D_TOOLS_M4D_RD_SWEEP_H_
+#define M4D_TOOLS_M4D_RD_SWEEP_H_
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "encode_command.h"
+#include "metrics/bjontegaard.h"
+#include "sequence_report_output.h"
+
+namespace m4d {
+
+// The paper's lambda_2 set, smallest rate first.
+const std::vector<double>& PaperLambdas();
+
+struct RdPoint {
+  double lambda = 0;
+  SequenceSummary summary;
+  double inter_psnr = 0;           // mean over inter frames (0 without any)
+  std::vector<double> frame_psnr;  // held-out PSNR per frame
+  std::vector<bool> keyframe;      // per frame
+  std::string stream;              // the stream written
+};
+
+struct RdCurve {
+  std::string label;  // e.g. "full method"
+  std::vector<RdPoint> points;
+};
+
+// Trains the first keyframe once into dir/keyframe.ply and points args at it, unless
+// args->keyframe_ply is already set.
+Status PrepareSharedKeyframe(const std::string& dir, EncodeArguments* args);
+
+// Encodes with each lambda into dir/<name>_lambda<L>.m4d (and its JSON).
+Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
+                const std::string& dir, const std::string& name, RdCurve* curve);
+
+// (KB per frame with keyframes, mean held-out PSNR) per point, for Bjontegaard deltas.
+std::vector<RatePoint> RatePoints(const RdCurve& curve);
+
+// The curve as JSON: per point lambda, stream, rates, PSNRs, time, PSNR per frame.
+nlohmann::json RdCurveJson(const RdCurve& curve);
+
+// PSNR against KB per frame for each curve, with gnuplot; M4D_ERR_UNSUPPORTED when gnuplot
+// is missing.
+Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png);
+// Held-out PSNR per frame, one line per lambda of the curve.
+Status PlotPsnrPerFrame(const RdCurve& curve, const std::string& png);
+
+}  // namespace m4d
+
+#endif  // M4D_TOOLS_M4D_RD_SWEEP_H_
