@@ -14,6 +14,7 @@
 #include "sequence_report_output.h"
 #include "stream_check.h"
 #include "train/progress_bar.h"
+#include "video/video_writer.h"
 #include "view_strip.h"
 
 namespace m4d {
@@ -39,6 +40,22 @@ Image ErrorImage(const Image& truth, const Image& render, float gain) {
     error.pixels[i] = std::min(1.0f, gain * std::fabs(truth.pixels[i] - render.pixels[i]));
   }
   return error;
+}
+
+// Appends the strip to dir/views.mp4 (opened on the first frame; sizes cropped to even).
+Status AppendToVideo(const std::string& dir, const std::vector<const Image*>& images,
+                     std::unique_ptr<VideoWriter>* video) {
+  Image strip;
+  M4D_RETURN_IF_ERROR(ViewStrip(images, &strip));
+  Image even(strip.width & ~1, strip.height & ~1, 3);
+  for (int y = 0; y < even.height; ++y) std::copy_n(strip.row(y), even.row_size(), even.row(y));
+  if (!*video) {
+    VideoWriterOptions options;
+    options.fps = 5;  // slow enough to follow the per-frame differences
+    M4D_RETURN_IF_ERROR(VideoWriter::Open((std::filesystem::path(dir) / "views.mp4").string(),
+                                          even.width, even.height, options, video));
+  }
+  return (*video)->Write(even);
 }
 
 }  // namespace
@@ -146,13 +163,15 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     header = false;
   };
   Status view_status = Status::Ok();
+  std::unique_ptr<VideoWriter> views_video;
   if (!args.views.empty()) {
     callbacks.held_out_view = [&](int frame, const Image& truth, const Image& render) {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%05d.png", frame);
       const Image error = ErrorImage(truth, render, 4.0f);
-      const Status s = WriteViewStrip((std::filesystem::path(args.views) / name).string(),
-                                      {&truth, &render, &error});
+      Status s = WriteViewStrip((std::filesystem::path(args.views) / name).string(),
+                                {&truth, &render, &error});
+      if (s.ok()) s = AppendToVideo(args.views, {&truth, &render, &error}, &views_video);
       if (view_status.ok()) view_status = s;
     };
   }
@@ -172,6 +191,11 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, report));
   PrintSummary(stdout, *report);
   M4D_RETURN_IF_ERROR(view_status);
+  if (views_video) {
+    M4D_RETURN_IF_ERROR(views_video->Finish());
+    std::printf("%-34s %s/views.mp4 (%s)\n", "held-out views", args.views.c_str(),
+                views_video->codec_name().c_str());
+  }
 
   std::error_code ec;
   const std::filesystem::path parent = std::filesystem::path(args.output).parent_path();
@@ -211,7 +235,7 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
   cmd->add_option("--views", args->views,
                   "write the held-out view, its decoded render and their difference (x4), one PNG "
-                  "per frame, here");
+                  "per frame and views.mp4 of them all, here");
   cmd->callback([args, exit_code]() {
     SequenceReport report;
     *exit_code = ReportStatus("encode", RunEncode(*args, &report));
