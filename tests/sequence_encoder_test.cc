@@ -13,6 +13,7 @@
 #include "m4d/m4d.h"
 #include "pipeline/sequence_encoder.h"
 #include "render/splat_renderer.h"
+#include "train/keyframe_trainer.h"
 #include "splat_test_scenes.h"
 #include "stream_test_util.h"
 
@@ -210,6 +211,38 @@ TEST(SequenceEncoderTest, ContentAppearingAwayFromMotionStartsAGop) {
   EXPECT_LT(unguarded.frames[3].training_psnr, unguarded.frames[0].training_psnr - 2.0);
   EXPECT_GT(guarded.frames[3].training_psnr, unguarded.frames[3].training_psnr + 2.0);
   EXPECT_GT(guarded.frames[3].psnr, unguarded.frames[3].psnr + 0.5);
+}
+
+// The per-frame baseline: every frame a static keyframe from its own training (here from the
+// caller's source, as `m4d rd` shares one training per frame between rate points).
+TEST(SequenceEncoderTest, IndependentFramesAreStaticKeyframesFromTheSource) {
+  Capture capture = MakeCapture();
+  EncoderOptions o = SmallOptions();
+  o.independent_frames = true;
+  o.frame_count = 3;
+  SequenceEncoder encoder(capture, o);
+  std::vector<int> asked;
+  encoder.SetKeyframeSource([&](int frame, GaussianModel* model) {
+    asked.push_back(frame);
+    return TrainKeyframe(capture, frame, o.keyframe, nullptr, model);
+  });
+  SequenceReport report;
+  ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+  EXPECT_EQ(asked, (std::vector<int>{0, 1, 2}));
+  ASSERT_EQ(report.frames.size(), 3u);
+  const std::vector<std::string> decoded = DecodedHashes(encoder.stream());
+  ASSERT_EQ(decoded.size(), 3u);
+  for (int f = 0; f < 3; ++f) {
+    const FrameReport& r = report.frames[f];
+    EXPECT_TRUE(r.keyframe) << f;
+    EXPECT_EQ(r.hash, decoded[f]) << f;
+    EXPECT_EQ(r.dynamic_count, 0u) << f;
+    EXPECT_GT(r.static_count, 0u) << f;
+    EXPECT_GT(r.psnr, 18.0) << f;  // each frame's own training follows the moving blob
+  }
+  EXPECT_NE(report.frames[1].hash, report.frames[2].hash);
+  encoder.SetKeyframeSource([](int, GaussianModel*) { return Status(M4D_ERR_UNSUPPORTED, "gone"); });
+  EXPECT_EQ(encoder.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_UNSUPPORTED);
 }
 
 TEST(SequenceEncoderTest, RejectsBadOptions) {

@@ -16,7 +16,7 @@ namespace {
 
 struct AblateArguments {
   EncodeArguments encode;
-  std::string dir = "out/ablate";
+  SweepOutput out{"out/ablate", false};
   std::vector<double> lambdas = PaperLambdas();
   int fixed_gop = 50;  // the paper's fixed GOP length
 };
@@ -67,16 +67,16 @@ Row Summarise(const RdCurve& curve, const RdCurve& full) {
 
 Status RunAblate(AblateArguments args) {
   std::error_code ec;
-  std::filesystem::create_directories(args.dir, ec);
-  if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.dir);
-  M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.dir, &args.encode));
+  std::filesystem::create_directories(args.out.dir, ec);
+  if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.out.dir);
+  M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.out, &args.encode));
   std::vector<RdCurve> curves;
   for (const Ablation& a : Ablations(args.fixed_gop)) {
     EncodeArguments run = args.encode;
     a.apply(&run.encoder);
     curves.emplace_back();
     curves.back().label = a.label;
-    M4D_RETURN_IF_ERROR(RunSweep(run, args.lambdas, args.dir, a.name, &curves.back()));
+    M4D_RETURN_IF_ERROR(RunSweep(run, args.lambdas, args.out, a.name, &curves.back()));
   }
   std::printf("\nmeans over lambda_2 = ");
   for (double l : args.lambdas) std::printf("%g ", l);
@@ -96,7 +96,7 @@ Status RunAblate(AblateArguments args) {
     if (r.has_bd) row["bd_rate_percent"] = r.bd.rate_percent, row["bd_psnr_db"] = r.bd.psnr_db;
     rows.push_back(row);
   }
-  const std::filesystem::path dir(args.dir);
+  const std::filesystem::path dir(args.out.dir);
   std::ofstream((dir / "ablate.json").string()) << rows.dump(2) << "\n";
   const Status plot = PlotRdCurves(curves, (dir / "ablate.png").string());
   if (!plot.ok()) std::fprintf(stderr, "m4d ablate: no plot: %s\n", plot.message().c_str());
@@ -115,8 +115,7 @@ void AddAblateCommand(CLI::App* app, int* exit_code) {
       "ablate", "the paper's ablations swept over lambda_2, with BD-rate against the full method");
   AddCaptureArguments(cmd, &args->encode.capture);
   AddEncoderOptions(cmd, &args->encode);
-  cmd->add_option("-o,--output-dir", args->dir, "streams, reports and plots go here")
-      ->capture_default_str();
+  AddSweepOutputOptions(cmd, &args->out);
   cmd->add_option("--lambdas", args->lambdas, "rate weights lambda_2 (default: the paper's)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);

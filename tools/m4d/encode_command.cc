@@ -128,8 +128,75 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_flag(
       "--no-rate", [&o](int64_t) { o.ablation.rate_term = false; },
       "ablation: motion trained without the rate term");
+  cmd->add_flag(
+      "--independent-frames", o.independent_frames,
+      "baseline: every frame trained from scratch and coded as a static keyframe");
+  GaussianQuantization& q = o.quantization;
+  const auto bits = CLI::Range(1, 24);
+  cmd->add_option("--position-bits", q.position_bits, "Gaussian coding: bits per position axis")
+      ->check(bits)
+      ->capture_default_str();
+  cmd->add_option("--scale-bits", q.log_scale_bits, "bits per log-scale")
+      ->check(bits)
+      ->capture_default_str();
+  cmd->add_option("--rotation-bits", q.rotation_bits, "bits per quaternion component")
+      ->check(bits)
+      ->capture_default_str();
+  cmd->add_option("--opacity-bits", q.opacity_bits, "bits per opacity")
+      ->check(bits)
+      ->capture_default_str();
+  cmd->add_option("--color-bits", q.sh_dc_bits, "bits per SH DC coefficient")
+      ->check(bits)
+      ->capture_default_str();
+  cmd->add_option("--sh-bits", q.sh_rest_bits, "bits per higher SH coefficient")
+      ->check(bits)
+      ->capture_default_str();
   cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
+}
+
+nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
+  const EncoderOptions& o = args.encoder;
+  const GaussianQuantization& q = o.quantization;
+  double lambda = o.motion.rate_weight;
+  if (!args.rate_point.empty()) RatePointLambda(args.rate_point, &lambda);  // checked before
+  const CaptureOptions& c = args.capture.capture;
+  return {{"dataset", args.capture.dataset},
+          {"capture",
+           {{"test_camera", c.test_camera},
+            {"downscale", c.downscale},
+            {"first_frame", c.first_frame},
+            {"max_frames", c.max_frames},
+            {"initial_points", c.initial_points}}},
+          {"first_frame", o.first_frame},
+          {"frame_count", o.frame_count},
+          {"keyframe_ply", args.keyframe_ply},
+          {"keyframe_iterations",
+           args.keyframe_iterations > 0 ? args.keyframe_iterations : o.keyframe.iterations},
+          {"retrain_iterations", o.retrain_iterations},
+          {"lambda", lambda},
+          {"sh_degree", o.sh_degree},
+          {"lookahead", {o.lookahead_frames, o.lookahead_step}},
+          {"decoupling_thresholds",
+           {o.decoupling.thresholds.displacement, o.decoupling.thresholds.scale_change,
+            o.decoupling.thresholds.error}},
+          {"motion_iterations", {o.first_motion_iterations, o.motion.iterations}},
+          {"motion_views_per_step", o.motion.views_per_step},
+          {"compensation_iterations", o.compensation.iterations},
+          {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},
+          {"fixed_gop", o.gop.fixed_length},
+          {"max_gop", o.gop.max_length},
+          {"gop_threshold", o.gop.threshold},
+          {"gop_psnr_drop", o.gop.max_psnr_drop},
+          {"decoupling", o.ablation.decoupling},
+          {"motion_estimation", o.ablation.motion_estimation},
+          {"compensation", o.ablation.compensation},
+          {"rate_term", o.ablation.rate_term},
+          {"independent_frames", o.independent_frames},
+          {"quantization_bits",
+           {q.position_bits, q.log_scale_bits, q.rotation_bits, q.opacity_bits, q.sh_dc_bits,
+            q.sh_rest_bits}},
+          {"seed", o.seed}};
 }
 
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
@@ -188,6 +255,7 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, options.sh_degree, &model));
     encoder.SetFirstKeyframe(std::move(model));
   }
+  if (args.keyframe_source) encoder.SetKeyframeSource(args.keyframe_source);
   M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, report));
   PrintSummary(stdout, *report);
   M4D_RETURN_IF_ERROR(view_status);
@@ -205,19 +273,7 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
              static_cast<std::streamsize>(encoder.stream().size()));
   if (!file) return Status(M4D_ERR_INVALID_ARG, "cannot write " + args.output);
   const std::string json_path = args.json.empty() ? args.output + ".json" : args.json;
-  const nlohmann::json extra = {{"options",
-                                 {{"dataset", args.capture.dataset},
-                                  {"lambda", options.motion.rate_weight},
-                                  {"sh_degree", options.sh_degree},
-                                  {"adaptive_gop", options.gop.adaptive},
-                                  {"fixed_gop", options.gop.fixed_length},
-                                  {"gop_threshold", options.gop.threshold},
-                                  {"gop_psnr_drop", options.gop.max_psnr_drop},
-                                  {"decoupling", options.ablation.decoupling},
-                                  {"motion_estimation", options.ablation.motion_estimation},
-                                  {"compensation", options.ablation.compensation},
-                                  {"rate_term", options.ablation.rate_term},
-                                  {"seed", options.seed}}}};
+  const nlohmann::json extra = {{"options", EncodeOptionsJson(args)}};
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
   M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));
   std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",

@@ -4,12 +4,15 @@
 #define M4D_TOOLS_M4D_ENCODE_COMMAND_H_
 
 #include <CLI/CLI.hpp>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "capture_arguments.h"
 #include "common/status.h"
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
+#include "train/gaussian_model.h"
 
 namespace m4d {
 
@@ -22,6 +25,8 @@ struct EncodeArguments {
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)
+  // Frame -> model trained earlier, for --independent-frames (empty: train each frame).
+  std::function<Status(int frame, GaussianModel* model)> keyframe_source;
 };
 
 // The paper's rate points: r1 (lowest rate) .. r5 = lambda_2 5e-4 .. 5e-5.
@@ -29,6 +34,10 @@ Status RatePointLambda(const std::string& name, double* lambda);
 
 // Adds the encoder's options (stages, GOP, ablations, rate) to a command.
 void AddEncoderOptions(CLI::App* command, EncodeArguments* args);
+
+// What decides the stream and its report (the options a report records, and what `--reuse`
+// compares).
+nlohmann::json EncodeOptionsJson(const EncodeArguments& args);
 
 // Encodes with progress on stderr and the frame table on stdout; writes stream and JSON.
 Status RunEncode(const EncodeArguments& args, SequenceReport* report);

@@ -16,39 +16,79 @@ namespace {
 
 struct RdArguments {
   EncodeArguments encode;
-  std::string dir = "out/rd";
+  SweepOutput out{"out/rd", false};
   std::vector<double> lambdas = PaperLambdas();
+  std::vector<std::string> baselines = {"static", "dynamic"};
 };
 
-void PrintTable(const RdCurve& curve) {
-  std::printf("\n%-10s %12s %12s %10s %10s %8s %10s\n", "lambda_2", "KB/frame", "KB/inter", "PSNR",
-              "inter PSNR", "SSIM", "s/inter");
+void PrintCurve(const RdCurve& curve) {
+  std::printf("\n%s\n%-26s %11s %10s %8s %10s %7s %5s %8s\n", curve.label.c_str(), "rate point",
+              "KB/frame", "KB/inter", "PSNR", "inter PSNR", "SSIM", "keys", "s/inter");
   for (const RdPoint& p : curve.points) {
-    std::printf("%-10g %12.2f %12.2f %10.2f %10.2f %8.4f %10.1f\n", p.lambda,
+    std::printf("%-26s %11.2f %10.2f %8.2f %10.2f %7.4f %5zu %8.1f\n", p.name.c_str(),
                 p.summary.kb_per_frame, p.summary.kb_per_inter_frame, p.summary.psnr, p.inter_psnr,
-                p.summary.ssim, p.summary.seconds_per_inter_frame);
+                p.summary.ssim, p.summary.keyframes, p.summary.seconds_per_inter_frame);
   }
+}
+
+// Ours against a baseline: BD-rate (negative: we need fewer bytes) and BD-PSNR.
+nlohmann::json CompareWith(const RdCurve& ours, const RdCurve& baseline) {
+  BjontegaardDelta bd;
+  const Status s = ComputeBjontegaard(RatePoints(baseline), RatePoints(ours), &bd);
+  std::printf("%-38s ", ("against " + baseline.label).c_str());
+  if (!s.ok()) {
+    std::printf("n/a (%s)\n", s.message().c_str());
+    return {{"baseline", baseline.label}, {"error", s.message()}};
+  }
+  std::printf("BD-rate %+8.1f%%   BD-PSNR %+6.2f dB\n", bd.rate_percent, bd.psnr_db);
+  return {{"baseline", baseline.label},
+          {"bd_rate_percent", bd.rate_percent},
+          {"bd_psnr_db", bd.psnr_db}};
+}
+
+Status RunBaselines(const RdArguments& args, std::vector<RdCurve>* curves) {
+  for (const std::string& b : args.baselines) {
+    curves->emplace_back();
+    RdCurve& curve = curves->back();
+    if (b == "static") {
+      curve.label = "static per frame";
+      M4D_RETURN_IF_ERROR(RunStaticLadder(args.encode, args.out, &curve));
+    } else {
+      curve.label = "all dynamic (3DGStream-like)";
+      EncodeArguments run = args.encode;
+      run.encoder.ablation.decoupling = false;
+      M4D_RETURN_IF_ERROR(RunSweep(run, args.lambdas, args.out, "no_decoupling", &curve));
+    }
+  }
+  return Status::Ok();
 }
 
 Status RunRd(RdArguments args) {
   std::error_code ec;
-  std::filesystem::create_directories(args.dir, ec);
-  if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.dir);
-  M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.dir, &args.encode));
-  RdCurve curve;
-  curve.label = "m4d";
-  M4D_RETURN_IF_ERROR(RunSweep(args.encode, args.lambdas, args.dir, "rd", &curve));
-  PrintTable(curve);
-  const std::string json_path = (std::filesystem::path(args.dir) / "rd.json").string();
-  std::ofstream(json_path) << RdCurveJson(curve).dump(2) << "\n";
-  for (const Status& plot :
-       {PlotRdCurves({curve}, (std::filesystem::path(args.dir) / "rd.png").string()),
-        PlotPsnrPerFrame(curve,
-                         (std::filesystem::path(args.dir) / "psnr_per_frame.png").string())}) {
+  std::filesystem::create_directories(args.out.dir, ec);
+  if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.out.dir);
+  M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.out, &args.encode));
+  std::vector<RdCurve> curves(1);
+  curves[0].label = "m4d";
+  M4D_RETURN_IF_ERROR(RunSweep(args.encode, args.lambdas, args.out, "full", &curves[0]));
+  M4D_RETURN_IF_ERROR(RunBaselines(args, &curves));
+  nlohmann::json doc = {{"curves", nlohmann::json::array()}, {"bd", nlohmann::json::array()}};
+  for (const RdCurve& curve : curves) {
+    PrintCurve(curve);
+    doc["curves"].push_back(RdCurveJson(curve));
+  }
+  if (curves.size() > 1) {
+    std::printf("\nm4d against the baselines (PCHIP over KB per frame, keyframes included):\n");
+  }
+  for (size_t c = 1; c < curves.size(); ++c) doc["bd"].push_back(CompareWith(curves[0], curves[c]));
+  const std::filesystem::path dir(args.out.dir);
+  std::ofstream((dir / "rd.json").string()) << doc.dump(2) << "\n";
+  for (const Status& plot : {PlotRdCurves(curves, (dir / "rd.png").string()),
+                             PlotPsnrPerFrame(curves[0], (dir / "psnr_per_frame.png").string())}) {
     if (!plot.ok()) std::fprintf(stderr, "m4d rd: no plot: %s\n", plot.message().c_str());
   }
-  std::printf("\nreport %s; plots rd.png and psnr_per_frame.png in %s\n", json_path.c_str(),
-              args.dir.c_str());
+  std::printf("\nreport %s; plots rd.png and psnr_per_frame.png in %s\n",
+              (dir / "rd.json").c_str(), args.out.dir.c_str());
   return Status::Ok();
 }
 
@@ -57,15 +97,25 @@ Status RunRd(RdArguments args) {
 void AddRdCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<RdArguments>();
   CLI::App* cmd = app->add_subcommand(
-      "rd", "RD sweep over lambda_2: one stream per rate point, table, JSON and PNG plots");
+      "rd",
+      "RD sweep over lambda_2 against the baselines: one stream per rate point, table, JSON "
+      "and PNG plots");
   AddCaptureArguments(cmd, &args->encode.capture);
   AddEncoderOptions(cmd, &args->encode);
-  cmd->add_option("-o,--output-dir", args->dir, "streams, reports and plots go here")
-      ->capture_default_str();
+  AddSweepOutputOptions(cmd, &args->out);
   cmd->add_option("--lambdas", args->lambdas, "rate weights lambda_2 (default: the paper's)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
-  cmd->callback([args, exit_code]() { *exit_code = ReportStatus("rd", RunRd(*args)); });
+  cmd->add_option("--baselines", args->baselines,
+                  "static: every frame trained and coded on its own, over a quantization "
+                  "ladder; dynamic: every Gaussian dynamic, over the lambdas; none")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"static", "dynamic", "none"}))
+      ->capture_default_str();
+  cmd->callback([args, exit_code]() {
+    if (args->baselines == std::vector<std::string>{"none"}) args->baselines.clear();
+    *exit_code = ReportStatus("rd", RunRd(*args));
+  });
 }
 
 }  // namespace m4d

@@ -1,5 +1,6 @@
 #include "rd_sweep.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +42,110 @@ std::string PlotHeader(const std::string& png, const char* title, const char* x,
   return s.str();
 }
 
+// Trains one frame with the sweep's keyframe schedule into a 3DGS PLY, showing progress.
+Status TrainToPly(const Capture& capture, int frame, const EncodeArguments& args,
+                  const std::string& path) {
+  KeyframeTrainingOptions o = args.keyframe_iterations > 0
+                                  ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
+                                  : args.encoder.keyframe;
+  o.sh_degree = args.encoder.sh_degree;
+  o.threads = args.encoder.threads;
+  o.seed = args.encoder.seed;
+  std::copy(args.encoder.background, args.encoder.background + 3, o.background);
+  ProgressBar bar;
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(TrainKeyframe(
+      capture, frame, o,
+      [&](const TrainingProgress& p) {
+        if (p.iteration == 0) return;
+        std::fprintf(stderr, "\rkeyframe %d ", frame);
+        bar.Update(p);
+        if (p.iteration == p.iterations) bar.Finish();
+      },
+      &model));
+  GaussianSet set;
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, model.sh_degree, &set));
+  return WriteGaussianPly(path, set);
+}
+
+// A rate point from the report `m4d encode` wrote beside its stream.
+Status ReadPoint(const std::string& json_path, RdPoint* point) {
+  std::ifstream file(json_path);
+  const nlohmann::json doc = nlohmann::json::parse(file, nullptr, false);
+  try {
+    const nlohmann::json& s = doc.at("summary");
+    SequenceSummary& m = point->summary;
+    m.frames = s.at("frames");
+    m.keyframes = s.at("keyframes");
+    m.kb_per_frame = s.at("kb_per_frame");
+    m.kb_per_inter_frame = s.at("kb_per_inter_frame");
+    m.kb_per_keyframe = s.at("kb_per_keyframe");
+    m.psnr = s.at("psnr");
+    m.keyframe_psnr = s.at("keyframe_psnr");
+    m.ssim = s.at("ssim");
+    m.seconds = s.at("seconds");
+    m.seconds_per_inter_frame = s.at("seconds_per_inter_frame");
+    double inter_sum = 0;
+    int inter = 0;
+    for (const nlohmann::json& f : doc.at("frames")) {
+      point->frame_psnr.push_back(f.at("psnr"));
+      point->keyframe.push_back(f.at("keyframe"));
+      if (!point->keyframe.back()) inter_sum += point->frame_psnr.back(), ++inter;
+    }
+    point->inter_psnr = inter ? inter_sum / inter : 0.0;
+  } catch (const nlohmann::json::exception&) {
+    return Status(M4D_ERR_INVALID_ARG, json_path + ": not an encoder report");
+  }
+  return Status::Ok();
+}
+
+// Whether an earlier run wrote this stream and its report with these options.
+bool EarlierRun(const EncodeArguments& run) {
+  std::ifstream file(run.output + ".json");
+  if (!file || !std::filesystem::exists(run.output)) return false;
+  const nlohmann::json doc = nlohmann::json::parse(file, nullptr, false);
+  return doc.is_object() && doc.contains("options") && doc["options"] == EncodeOptionsJson(run);
+}
+
+// Encodes one rate point (or, with reuse, takes an earlier run's) and reads its report.
+Status RunPoint(EncodeArguments run, const SweepOutput& out, RdPoint* point) {
+  run.json.clear();
+  run.views.clear();
+  if (out.reuse && EarlierRun(run)) {
+    std::printf("reusing %s (same options)\n", run.output.c_str());
+  } else {
+    SequenceReport report;
+    M4D_RETURN_IF_ERROR(RunEncode(run, &report));
+  }
+  point->stream = run.output;
+  return ReadPoint(run.output + ".json", point);
+}
+
+// Coarser and coarser Gaussian coding: (position, log-scale, rotation, opacity, SH DC, higher
+// SH) bits, the encoder's default first.
+const std::vector<GaussianQuantization>& StaticLadder() {
+  static const std::vector<GaussianQuantization> kLadder = [] {
+    const int bits[][6] = {{16, 8, 10, 8, 8, 5},
+                           {14, 7, 9, 7, 7, 4},
+                           {13, 6, 8, 6, 6, 3},
+                           {12, 5, 7, 5, 6, 2},
+                           {11, 4, 6, 4, 5, 1}};
+    std::vector<GaussianQuantization> ladder;
+    for (const auto& b : bits) {
+      GaussianQuantization q;
+      q.position_bits = b[0];
+      q.log_scale_bits = b[1];
+      q.rotation_bits = b[2];
+      q.opacity_bits = b[3];
+      q.sh_dc_bits = b[4];
+      q.sh_rest_bits = b[5];
+      ladder.push_back(q);
+    }
+    return ladder;
+  }();
+  return kLadder;
+}
+
 }  // namespace
 
 const std::vector<double>& PaperLambdas() {
@@ -48,63 +153,89 @@ const std::vector<double>& PaperLambdas() {
   return kLambdas;
 }
 
-Status PrepareSharedKeyframe(const std::string& dir, EncodeArguments* args) {
+void AddSweepOutputOptions(CLI::App* cmd, SweepOutput* out) {
+  cmd->add_option("-o,--output-dir", out->dir, "streams, reports and plots go here")
+      ->capture_default_str();
+  cmd->add_flag("--reuse", out->reuse,
+                "take streams whose reports in the output directory record the same options, and "
+                "trained keyframes found there, instead of encoding again (to resume a sweep, or "
+                "share runs between rd and ablate)");
+}
+
+Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
   if (!args->keyframe_ply.empty()) return Status::Ok();
-  Capture capture;
-  M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
-  KeyframeTrainingOptions o = args->keyframe_iterations > 0
-                                  ? KeyframeTrainingOptions::Short(args->keyframe_iterations)
-                                  : args->encoder.keyframe;
-  o.sh_degree = args->encoder.sh_degree;
-  o.threads = args->encoder.threads;
-  o.seed = args->encoder.seed;
-  std::copy(args->encoder.background, args->encoder.background + 3, o.background);
-  ProgressBar bar;
-  GaussianModel model;
-  M4D_RETURN_IF_ERROR(TrainKeyframe(
-      capture, args->encoder.first_frame, o,
-      [&](const TrainingProgress& p) {
-        if (p.iteration == 0) return;
-        std::fprintf(stderr, "\rshared keyframe ");
-        bar.Update(p);
-        if (p.iteration == p.iterations) bar.Finish();
-      },
-      &model));
-  GaussianSet set;
-  M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, model.sh_degree, &set));
-  args->keyframe_ply = (std::filesystem::path(dir) / "keyframe.ply").string();
-  return WriteGaussianPly(args->keyframe_ply, set);
+  const std::string path = (std::filesystem::path(out.dir) / "keyframe.ply").string();
+  if (!out.reuse || !std::filesystem::exists(path)) {
+    Capture capture;
+    M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
+    M4D_RETURN_IF_ERROR(TrainToPly(capture, args->encoder.first_frame, *args, path));
+  }
+  args->keyframe_ply = path;
+  return Status::Ok();
 }
 
 Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
-                const std::string& dir, const std::string& name, RdCurve* curve) {
+                const SweepOutput& out, const std::string& name, RdCurve* curve) {
   for (size_t i = 0; i < lambdas.size(); ++i) {
     std::printf("\n== %s: lambda_2 %g (%zu of %zu) ==\n", curve->label.c_str(), lambdas[i], i + 1,
                 lambdas.size());
     EncodeArguments run = args;
     run.rate_point.clear();
     run.encoder.motion.rate_weight = lambdas[i];
-    run.output = (std::filesystem::path(dir) / (name + "_lambda" + LambdaName(lambdas[i]) + ".m4d"))
+    run.output = (std::filesystem::path(out.dir) /
+                  (name + "_lambda" + LambdaName(lambdas[i]) + ".m4d"))
                      .string();
-    run.json.clear();
-    run.views.clear();
-    SequenceReport report;
-    M4D_RETURN_IF_ERROR(RunEncode(run, &report));
     RdPoint point;
+    M4D_RETURN_IF_ERROR(RunPoint(run, out, &point));
+    point.name = "lambda_2 " + LambdaName(lambdas[i]);
     point.lambda = lambdas[i];
-    point.summary = Summarise(report);
-    point.stream = run.output;
-    double inter_sum = 0;
-    int inter = 0;
-    for (const FrameReport& f : report.frames) {
-      point.frame_psnr.push_back(f.psnr);
-      point.keyframe.push_back(f.keyframe);
-      if (!f.keyframe) {
-        inter_sum += f.psnr;
-        ++inter;
-      }
+    curve->points.push_back(std::move(point));
+  }
+  return Status::Ok();
+}
+
+Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCurve* curve) {
+  Capture capture;
+  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  const int first = args.encoder.first_frame;
+  const int available = capture.frame_count - first;
+  const int frames =
+      args.encoder.frame_count > 0 ? std::min(args.encoder.frame_count, available) : available;
+  if (frames <= 0) return Status(M4D_ERR_INVALID_ARG, "first frame beyond the capture");
+  std::vector<std::string> paths;
+  for (int t = first; t < first + frames; ++t) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%05d.ply", t);
+    paths.push_back((std::filesystem::path(out.dir) / name).string());
+    if (t == first && !args.keyframe_ply.empty()) {
+      paths.back() = args.keyframe_ply;  // the shared keyframe is this frame's own training
+    } else if (!out.reuse || !std::filesystem::exists(paths.back())) {
+      M4D_RETURN_IF_ERROR(TrainToPly(capture, t, args, paths.back()));
     }
-    point.inter_psnr = inter ? inter_sum / inter : 0.0;
+  }
+  EncodeArguments run = args;
+  run.encoder.independent_frames = true;
+  const int sh_degree = args.encoder.sh_degree;
+  run.keyframe_source = [paths, first, sh_degree](int frame, GaussianModel* model) {
+    GaussianSet set;
+    M4D_RETURN_IF_ERROR(ReadGaussianPly(paths[frame - first], &set));
+    return ModelFromGaussianSet(set, sh_degree, model);
+  };
+  const std::vector<GaussianQuantization>& ladder = StaticLadder();
+  for (size_t i = 0; i < ladder.size(); ++i) {
+    const GaussianQuantization& q = ladder[i];
+    char name[64];
+    std::snprintf(name, sizeof(name), "bits %d/%d/%d/%d/%d/%d", q.position_bits,
+                  q.log_scale_bits, q.rotation_bits, q.opacity_bits, q.sh_dc_bits,
+                  q.sh_rest_bits);
+    std::printf("\n== %s: %s (%zu of %zu) ==\n", curve->label.c_str(), name, i + 1,
+                ladder.size());
+    run.encoder.quantization = q;
+    run.output =
+        (std::filesystem::path(out.dir) / ("static_q" + std::to_string(i) + ".m4d")).string();
+    RdPoint point;
+    M4D_RETURN_IF_ERROR(RunPoint(run, out, &point));
+    point.name = name;
     curve->points.push_back(std::move(point));
   }
   return Status::Ok();
@@ -113,13 +244,23 @@ Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
 std::vector<RatePoint> RatePoints(const RdCurve& curve) {
   std::vector<RatePoint> points;
   for (const RdPoint& p : curve.points) points.push_back({p.summary.kb_per_frame, p.summary.psnr});
-  return points;
+  std::sort(points.begin(), points.end(),
+            [](const RatePoint& a, const RatePoint& b) { return a.rate < b.rate; });
+  // The RD envelope: a point that a cheaper one matches in PSNR is never the one to pick
+  // (and Bjontegaard needs PSNR rising with rate). Fine quantization steps can cost bytes
+  // without gaining anything measurable.
+  std::vector<RatePoint> envelope;
+  for (const RatePoint& p : points) {
+    if (envelope.empty() || p.psnr > envelope.back().psnr) envelope.push_back(p);
+  }
+  return envelope;
 }
 
 nlohmann::json RdCurveJson(const RdCurve& curve) {
   nlohmann::json points = nlohmann::json::array();
   for (const RdPoint& p : curve.points) {
-    points.push_back({{"lambda", p.lambda},
+    points.push_back({{"name", p.name},
+                      {"lambda", p.lambda},
                       {"stream", p.stream},
                       {"kb_per_frame", p.summary.kb_per_frame},
                       {"kb_per_inter_frame", p.summary.kb_per_inter_frame},
@@ -155,8 +296,8 @@ Status PlotPsnrPerFrame(const RdCurve& curve, const std::string& png) {
   s << PlotHeader(png, "Held-out PSNR per frame", "frame", "PSNR (dB)");
   s << "plot ";
   for (size_t c = 0; c < curve.points.size(); ++c) {
-    s << (c ? ", " : "") << "'-' using 1:2 with linespoints title 'lambda_2 "
-      << LambdaName(curve.points[c].lambda) << "'";
+    s << (c ? ", " : "") << "'-' using 1:2 with linespoints title '" << curve.points[c].name
+      << "'";
   }
   s << "\n";
   for (const RdPoint& p : curve.points) {

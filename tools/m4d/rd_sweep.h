@@ -4,6 +4,7 @@
 #ifndef M4D_TOOLS_M4D_RD_SWEEP_H_
 #define M4D_TOOLS_M4D_RD_SWEEP_H_
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ namespace m4d {
 const std::vector<double>& PaperLambdas();
 
 struct RdPoint {
+  std::string name;  // the rate point, e.g. "lambda_2 5e-05"
   double lambda = 0;
   SequenceSummary summary;
   double inter_psnr = 0;           // mean over inter frames (0 without any)
@@ -32,15 +34,31 @@ struct RdCurve {
   std::vector<RdPoint> points;
 };
 
+// Where a sweep writes and whether it may reuse what an earlier sweep wrote there: a run whose
+// stream and report exist with the same recorded options, and trained models.
+struct SweepOutput {
+  std::string dir;
+  bool reuse = false;
+};
+
+// -o,--output-dir and --reuse.
+void AddSweepOutputOptions(CLI::App* command, SweepOutput* out);
+
 // Trains the first keyframe once into dir/keyframe.ply and points args at it, unless
 // args->keyframe_ply is already set.
-Status PrepareSharedKeyframe(const std::string& dir, EncodeArguments* args);
+Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args);
 
 // Encodes with each lambda into dir/<name>_lambda<L>.m4d (and its JSON).
 Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
-                const std::string& dir, const std::string& name, RdCurve* curve);
+                const SweepOutput& out, const std::string& name, RdCurve* curve);
 
-// (KB per frame with keyframes, mean held-out PSNR) per point, for Bjontegaard deltas.
+// The per-frame baseline (every frame trained on its own, coded as a static keyframe) at
+// each step of a quantization ladder, into dir/static_q<i>.m4d. Each frame is trained once
+// (dir/frame_<t>.ply; the first frame's model is the shared keyframe).
+Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCurve* curve);
+
+// (KB per frame with keyframes, mean held-out PSNR) of the curve's RD envelope (the points no
+// cheaper point matches in PSNR), by rate, for Bjontegaard deltas.
 std::vector<RatePoint> RatePoints(const RdCurve& curve);
 
 // The curve as JSON: per point lambda, stream, rates, PSNRs, time, PSNR per frame.

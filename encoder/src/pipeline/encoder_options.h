@@ -75,6 +75,10 @@ struct EncoderOptions {
   CompensationOptions compensation;
   GopOptions gop;
   AblationSwitches ablation;
+  // Baseline, not the paper's method: every frame a keyframe trained from scratch on its own
+  // views and coded whole as static Gaussians (per-frame 3DGS with this codec's Gaussian
+  // coding). The GOP options, decoupling and the inter-frame stages do not apply.
+  bool independent_frames = false;
 
   float background[3] = {0, 0, 0};
   int threads = 0;

@@ -167,6 +167,10 @@ void SequenceEncoder::SetFirstKeyframe(GaussianModel model) {
   first_keyframe_ = std::make_unique<GaussianModel>(std::move(model));
 }
 
+void SequenceEncoder::SetKeyframeSource(KeyframeSource source) {
+  keyframe_source_ = std::move(source);
+}
+
 const std::vector<uint8_t>& SequenceEncoder::stream() const {
   static const std::vector<uint8_t> kEmpty;
   return writer_ ? writer_->bytes() : kEmpty;
@@ -188,26 +192,10 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
   writer_ = std::make_unique<StreamWriter>(WriterOptions(options_, frames));
   estimator_ = std::make_unique<MotionEstimator>(options_.grid, options_.mlp, options_.grid_steps);
 
+  if (options_.independent_frames) return EncodeIndependentFrames();
   const Clock::time_point start = Clock::now();
-  KeyframeTrainingOptions keyframe = options_.keyframe;
-  keyframe.sh_degree = options_.sh_degree;
-  keyframe.threads = options_.threads;
-  keyframe.seed = options_.seed;
-  std::copy(options_.background, options_.background + 3, keyframe.background);
   GaussianModel model;
-  if (first_keyframe_) {
-    if (first_keyframe_->sh_degree < options_.sh_degree) {
-      return Status(M4D_ERR_INVALID_ARG, "encoder: first keyframe's SH degree below the stream's");
-    }
-    model = *first_keyframe_;
-  } else {
-    M4D_RETURN_IF_ERROR(TrainKeyframe(
-        capture_, first, keyframe,
-        [&](const TrainingProgress& p) {
-          if (callbacks_.training) callbacks_.training("keyframe", first, p);
-        },
-        &model));
-  }
+  M4D_RETURN_IF_ERROR(ScratchKeyframe(first, &model));
   M4D_RETURN_IF_ERROR(StartGop(first, std::move(model), Since(start)));
   for (int t = first + 1; t <= last_frame_; ++t) {
     bool restart = false;
@@ -216,6 +204,42 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
   }
   if (gop_->keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
   report->stream_bytes = writer_->bytes().size();
+  return Status::Ok();
+}
+
+Status SequenceEncoder::ScratchKeyframe(int frame, GaussianModel* model) {
+  if (keyframe_source_) {
+    M4D_RETURN_IF_ERROR(keyframe_source_(frame, model));
+  } else if (first_keyframe_ && frame == options_.first_frame) {
+    *model = *first_keyframe_;
+  } else {
+    KeyframeTrainingOptions o = options_.keyframe;
+    o.sh_degree = options_.sh_degree;
+    o.threads = options_.threads;
+    o.seed = options_.seed;
+    std::copy(options_.background, options_.background + 3, o.background);
+    return TrainKeyframe(
+        capture_, frame, o,
+        [&](const TrainingProgress& p) {
+          if (callbacks_.training) callbacks_.training("keyframe", frame, p);
+        },
+        model);
+  }
+  if (model->sh_degree < options_.sh_degree) {
+    return Status(M4D_ERR_INVALID_ARG, "encoder: keyframe's SH degree below the stream's");
+  }
+  return Status::Ok();
+}
+
+Status SequenceEncoder::EncodeIndependentFrames() {
+  for (int t = options_.first_frame; t <= last_frame_; ++t) {
+    const Clock::time_point start = Clock::now();
+    GaussianModel model;
+    M4D_RETURN_IF_ERROR(ScratchKeyframe(t, &model));
+    M4D_RETURN_IF_ERROR(StartGop(t, std::move(model), Since(start)));
+    M4D_RETURN_IF_ERROR(WriteKeyframe());
+  }
+  report_->stream_bytes = writer_->bytes().size();
   return Status::Ok();
 }
 
@@ -235,7 +259,7 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
   if (!options_.ablation.decoupling) {
     dynamic_model = std::move(model);
     static_model.sh_degree = dynamic_model.sh_degree;
-  } else if (t1 == frame) {
+  } else if (t1 == frame || options_.independent_frames) {
     static_model = std::move(model);  // nothing follows: all of it is background
     dynamic_model.sh_degree = static_model.sh_degree;
   } else {

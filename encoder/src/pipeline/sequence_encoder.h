@@ -56,6 +56,12 @@ class SequenceEncoder {
   // instead of training one; its SH degree must be at least the stream's.
   void SetFirstKeyframe(GaussianModel model);
 
+  // Frame -> a model trained on it earlier. With EncoderOptions::independent_frames, every
+  // frame's model comes from here instead of being trained (so that several rate points of
+  // the baseline share one training per frame).
+  using KeyframeSource = std::function<Status(int frame, GaussianModel* model)>;
+  void SetKeyframeSource(KeyframeSource source);
+
   Status Encode(const EncoderCallbacks& callbacks, SequenceReport* report);
 
   // The stream written so far.
@@ -63,6 +69,9 @@ class SequenceEncoder {
 
  private:
   struct Gop;
+  // A keyframe trained from the capture's points (or taken from the caller).
+  Status ScratchKeyframe(int frame, GaussianModel* model);
+  Status EncodeIndependentFrames();
   Status StartGop(int frame, GaussianModel model, double keyframe_seconds);
   Status EncodeInterFrame(int frame, bool* restart);
   Status WriteKeyframe();
@@ -83,6 +92,7 @@ class SequenceEncoder {
   std::unique_ptr<MotionEstimator> estimator_;
   std::unique_ptr<Gop> gop_;
   std::unique_ptr<GaussianModel> first_keyframe_;
+  KeyframeSource keyframe_source_;
 };
 
 }  // namespace m4d
