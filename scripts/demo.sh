@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/setup.sh
-scripts/build.sh
+scripts/build.sh m4d_cli m4d_decode  # the tests and benchmarks are scripts/test.sh's
 mkdir -p out
 m4d=build/release/tools/m4d/m4d
 # A keyframe schedule of 2000 iterations keeps the demo within about a quarter of an hour on

@@ -13,9 +13,9 @@
 #include "m4d/m4d.h"
 #include "pipeline/sequence_encoder.h"
 #include "render/splat_renderer.h"
-#include "train/keyframe_trainer.h"
 #include "splat_test_scenes.h"
 #include "stream_test_util.h"
+#include "train/keyframe_trainer.h"
 
 namespace m4d {
 namespace {
@@ -241,7 +241,8 @@ TEST(SequenceEncoderTest, IndependentFramesAreStaticKeyframesFromTheSource) {
     EXPECT_GT(r.psnr, 18.0) << f;  // each frame's own training follows the moving blob
   }
   EXPECT_NE(report.frames[1].hash, report.frames[2].hash);
-  encoder.SetKeyframeSource([](int, GaussianModel*) { return Status(M4D_ERR_UNSUPPORTED, "gone"); });
+  encoder.SetKeyframeSource(
+      [](int, GaussianModel*) { return Status(M4D_ERR_UNSUPPORTED, "gone"); });
   EXPECT_EQ(encoder.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_UNSUPPORTED);
 }
 

@@ -128,9 +128,8 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_flag(
       "--no-rate", [&o](int64_t) { o.ablation.rate_term = false; },
       "ablation: motion trained without the rate term");
-  cmd->add_flag(
-      "--independent-frames", o.independent_frames,
-      "baseline: every frame trained from scratch and coded as a static keyframe");
+  cmd->add_flag("--independent-frames", o.independent_frames,
+                "baseline: every frame trained from scratch and coded as a static keyframe");
   GaussianQuantization& q = o.quantization;
   const auto bits = CLI::Range(1, 24);
   cmd->add_option("--position-bits", q.position_bits, "Gaussian coding: bits per position axis")

@@ -1,10 +1,12 @@
 // m4d: the reference encoder's command line. Subcommands: scene (write the built-in
 // synthetic scene), train (one frame's 3D Gaussians), encode (a multi-view video to a stream),
-// rd (an RD sweep over lambda_2), ablate (the paper's ablation study).
+// rd (an RD sweep over lambda_2 against the baselines), ablate (the paper's ablation study),
+// bench (encode and decode time per frame).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "ablate_command.h"
+#include "bench_command.h"
 #include "encode_command.h"
 #include "m4d/m4d.h"
 #include "rd_command.h"
@@ -21,6 +23,7 @@ int main(int argc, char** argv) {
   m4d::AddEncodeCommand(&app, &exit_code);
   m4d::AddRdCommand(&app, &exit_code);
   m4d::AddAblateCommand(&app, &exit_code);
+  m4d::AddBenchCommand(&app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

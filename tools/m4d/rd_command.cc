@@ -87,8 +87,8 @@ Status RunRd(RdArguments args) {
                              PlotPsnrPerFrame(curves[0], (dir / "psnr_per_frame.png").string())}) {
     if (!plot.ok()) std::fprintf(stderr, "m4d rd: no plot: %s\n", plot.message().c_str());
   }
-  std::printf("\nreport %s; plots rd.png and psnr_per_frame.png in %s\n",
-              (dir / "rd.json").c_str(), args.out.dir.c_str());
+  std::printf("\nreport %s; plots rd.png and psnr_per_frame.png in %s\n", (dir / "rd.json").c_str(),
+              args.out.dir.c_str());
   return Status::Ok();
 }
 

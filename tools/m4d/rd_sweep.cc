@@ -182,9 +182,9 @@ Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
     EncodeArguments run = args;
     run.rate_point.clear();
     run.encoder.motion.rate_weight = lambdas[i];
-    run.output = (std::filesystem::path(out.dir) /
-                  (name + "_lambda" + LambdaName(lambdas[i]) + ".m4d"))
-                     .string();
+    run.output =
+        (std::filesystem::path(out.dir) / (name + "_lambda" + LambdaName(lambdas[i]) + ".m4d"))
+            .string();
     RdPoint point;
     M4D_RETURN_IF_ERROR(RunPoint(run, out, &point));
     point.name = "lambda_2 " + LambdaName(lambdas[i]);
@@ -225,11 +225,9 @@ Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCu
   for (size_t i = 0; i < ladder.size(); ++i) {
     const GaussianQuantization& q = ladder[i];
     char name[64];
-    std::snprintf(name, sizeof(name), "bits %d/%d/%d/%d/%d/%d", q.position_bits,
-                  q.log_scale_bits, q.rotation_bits, q.opacity_bits, q.sh_dc_bits,
-                  q.sh_rest_bits);
-    std::printf("\n== %s: %s (%zu of %zu) ==\n", curve->label.c_str(), name, i + 1,
-                ladder.size());
+    std::snprintf(name, sizeof(name), "bits %d/%d/%d/%d/%d/%d", q.position_bits, q.log_scale_bits,
+                  q.rotation_bits, q.opacity_bits, q.sh_dc_bits, q.sh_rest_bits);
+    std::printf("\n== %s: %s (%zu of %zu) ==\n", curve->label.c_str(), name, i + 1, ladder.size());
     run.encoder.quantization = q;
     run.output =
         (std::filesystem::path(out.dir) / ("static_q" + std::to_string(i) + ".m4d")).string();
@@ -296,8 +294,7 @@ Status PlotPsnrPerFrame(const RdCurve& curve, const std::string& png) {
   s << PlotHeader(png, "Held-out PSNR per frame", "frame", "PSNR (dB)");
   s << "plot ";
   for (size_t c = 0; c < curve.points.size(); ++c) {
-    s << (c ? ", " : "") << "'-' using 1:2 with linespoints title '" << curve.points[c].name
-      << "'";
+    s << (c ? ", " : "") << "'-' using 1:2 with linespoints title '" << curve.points[c].name << "'";
   }
   s << "\n";
   for (const RdPoint& p : curve.points) {
