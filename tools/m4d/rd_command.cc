@@ -33,17 +33,11 @@ void PrintCurve(const RdCurve& curve) {
 
 // Ours against a baseline: BD-rate (negative: we need fewer bytes) and BD-PSNR.
 nlohmann::json CompareWith(const RdCurve& ours, const RdCurve& baseline) {
-  BjontegaardDelta bd;
-  const Status s = ComputeBjontegaard(RatePoints(baseline), RatePoints(ours), &bd);
-  std::printf("%-38s ", ("against " + baseline.label).c_str());
-  if (!s.ok()) {
-    std::printf("n/a (%s)\n", s.message().c_str());
-    return {{"baseline", baseline.label}, {"error", s.message()}};
-  }
-  std::printf("BD-rate %+8.1f%%   BD-PSNR %+6.2f dB\n", bd.rate_percent, bd.psnr_db);
-  return {{"baseline", baseline.label},
-          {"bd_rate_percent", bd.rate_percent},
-          {"bd_psnr_db", bd.psnr_db}};
+  nlohmann::json c = CompareCurves(baseline, ours);
+  std::printf("%-30s %s %s\n", baseline.label.c_str(), BdCells(c, "all").c_str(),
+              BdCells(c, "inter").c_str());
+  c["baseline"] = baseline.label;
+  return c;
 }
 
 Status RunBaselines(const RdArguments& args, std::vector<RdCurve>* curves) {
@@ -78,7 +72,10 @@ Status RunRd(RdArguments args) {
     doc["curves"].push_back(RdCurveJson(curve));
   }
   if (curves.size() > 1) {
-    std::printf("\nm4d against the baselines (PCHIP over KB per frame, keyframes included):\n");
+    std::printf(
+        "\nm4d against the baselines (PCHIP Bjontegaard over each RD envelope)\n%-30s %18s "
+        "%18s\n%-30s %9s %8s %9s %8s\n",
+        "", "all frames", "inter frames", "baseline", "BD-rate", "BD-PSNR", "BD-rate", "BD-PSNR");
   }
   for (size_t c = 1; c < curves.size(); ++c) doc["bd"].push_back(CompareWith(curves[0], curves[c]));
   const std::filesystem::path dir(args.out.dir);

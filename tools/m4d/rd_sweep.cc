@@ -239,9 +239,15 @@ Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCu
   return Status::Ok();
 }
 
-std::vector<RatePoint> RatePoints(const RdCurve& curve) {
+std::vector<RatePoint> RatePoints(const RdCurve& curve, RateScope scope) {
   std::vector<RatePoint> points;
-  for (const RdPoint& p : curve.points) points.push_back({p.summary.kb_per_frame, p.summary.psnr});
+  for (const RdPoint& p : curve.points) {
+    if (scope == RateScope::kAllFrames) {
+      points.push_back({p.summary.kb_per_frame, p.summary.psnr});
+    } else if (p.summary.kb_per_inter_frame > 0) {
+      points.push_back({p.summary.kb_per_inter_frame, p.inter_psnr});
+    }
+  }
   std::sort(points.begin(), points.end(),
             [](const RatePoint& a, const RatePoint& b) { return a.rate < b.rate; });
   // The RD envelope: a point that a cheaper one matches in PSNR is never the one to pick
@@ -252,6 +258,30 @@ std::vector<RatePoint> RatePoints(const RdCurve& curve) {
     if (envelope.empty() || p.psnr > envelope.back().psnr) envelope.push_back(p);
   }
   return envelope;
+}
+
+nlohmann::json CompareCurves(const RdCurve& anchor, const RdCurve& test) {
+  nlohmann::json out = nlohmann::json::object();
+  for (RateScope scope : {RateScope::kAllFrames, RateScope::kInterFrames}) {
+    BjontegaardDelta bd;
+    const Status s = ComputeBjontegaard(RatePoints(anchor, scope), RatePoints(test, scope), &bd);
+    out[scope == RateScope::kAllFrames ? "all" : "inter"] =
+        s.ok() ? nlohmann::json{{"bd_rate_percent", bd.rate_percent}, {"bd_psnr_db", bd.psnr_db}}
+               : nlohmann::json{{"error", s.message()}};
+  }
+  return out;
+}
+
+std::string BdCells(const nlohmann::json& compare, const char* scope) {
+  char text[64];
+  const nlohmann::json& c = compare.at(scope);
+  if (c.contains("error")) {
+    std::snprintf(text, sizeof(text), "%9s %8s", "n/a", "");
+  } else {
+    std::snprintf(text, sizeof(text), "%+8.1f%% %+8.2f", c["bd_rate_percent"].get<double>(),
+                  c["bd_psnr_db"].get<double>());
+  }
+  return text;
 }
 
 nlohmann::json RdCurveJson(const RdCurve& curve) {

@@ -57,9 +57,20 @@ Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
 // (dir/frame_<t>.ply; the first frame's model is the shared keyframe).
 Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCurve* curve);
 
-// (KB per frame with keyframes, mean held-out PSNR) of the curve's RD envelope (the points no
-// cheaper point matches in PSNR), by rate, for Bjontegaard deltas.
-std::vector<RatePoint> RatePoints(const RdCurve& curve);
+// Which frames a rate point's rate and PSNR are means over. Over all frames keyframes dominate
+// a short sequence and where each GOP starts moves a point a long way; inter frames alone
+// compare what motion coding costs.
+enum class RateScope { kAllFrames, kInterFrames };
+
+// (KB per frame, mean held-out PSNR) of the curve's RD envelope (the points no cheaper point
+// matches in PSNR), by rate, for Bjontegaard deltas.
+std::vector<RatePoint> RatePoints(const RdCurve& curve, RateScope scope);
+
+// Bjontegaard deltas of `test` against `anchor`, over all frames ("all") and over inter frames
+// ("inter"), each {bd_rate_percent, bd_psnr_db} or {error} (too few points, no common range).
+nlohmann::json CompareCurves(const RdCurve& anchor, const RdCurve& test);
+// One scope of a comparison as table cells: "  -12.3%   +0.45" or "n/a", `width` wide.
+std::string BdCells(const nlohmann::json& compare, const char* scope);
 
 // The curve as JSON: per point lambda, stream, rates, PSNRs, time, PSNR per frame.
 nlohmann::json RdCurveJson(const RdCurve& curve);
