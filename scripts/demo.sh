@@ -8,11 +8,17 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/setup.sh
-scripts/build.sh m4d_cli m4d_decode  # the tests and benchmarks are scripts/test.sh's
+scripts/build.sh m4d_cli m4d_decode m4d_play  # the tests and benchmarks are scripts/test.sh's
 mkdir -p out
 m4d=build/release/tools/m4d/m4d
 # A keyframe schedule of 2000 iterations keeps the demo within about a quarter of an hour on
 # two cores; `m4d encode default` alone uses the full short schedule (7000).
 "$m4d" encode default -o out/default.m4d --keyframe-iterations 2000 --views out/default-views "$@"
 build/release/tools/m4d_decode out/default.m4d -o out/default.md5
+# The player's view: the SDK decodes and renders the held-out camera with OpenGL ES (headless).
+mkdir -p out/default-play
+build/release/tools/m4d_play out/default.m4d --capture out/default-scene -o out/default-play \
+  --mp4 out/default-play.mp4 | tail -3
 echo "per-frame hashes of the SDK's decode: out/default.md5; report: out/default.m4d.json"
+echo "held-out view (truth | decoded render | difference x4): out/default-views/ (PNG, views.mp4)"
+echo "the SDK's GL render of the held-out camera: out/default-play/ (PNG), out/default-play.mp4"
