@@ -14,6 +14,8 @@
 #include "train_command.h"
 
 int main(int argc, char** argv) {
+  // Tables on stdout and progress on stderr interleave in order even when both go to a file.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"m4d: motion-decoupled 4D Gaussian video codec, reference encoder"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("m4d ") + m4d_version());
