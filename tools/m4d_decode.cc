@@ -99,7 +99,11 @@ int main(int argc, char** argv) {
       m4d_frame_unref(&frame);
     }
   };
+  size_t skipped_before = 0;
   while (NextPacket(data, &pos, &info, &skipped)) {
+    // Skipped bytes may have held a packet the decoder cannot miss by itself (an optional
+    // KEYFRAME_STATIC): restart it at the next GOP.
+    if (skipped != skipped_before) m4d_flush(ctx), skipped_before = skipped;
     if (info.type == M4D_PACKET_SEQUENCE_HEADER) ++gop;
     if (gop >= opt.start_gop) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -110,8 +114,14 @@ int main(int argc, char** argv) {
       }
       decode_ms +=
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      if (r < 0) ++errors;
       drain();
+      if (r < 0) {
+        // The payload was damaged and its declared size may be too (a byte dropped): look
+        // for the next header right after this one.
+        ++errors;
+        pos += 24;
+        continue;
+      }
     }
     pos += info.packet_size;
   }
