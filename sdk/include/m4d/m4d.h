@@ -163,7 +163,10 @@ M4D_API int m4d_open(M4dContext** c_out, const M4dSettings* s);
  * CRC. Use it to split a byte stream into packets: the next packet starts at
  * data + info->packet_size. Returns M4D_ERR_AGAIN when fewer than 24 bytes (or than the whole
  * packet) are available, M4D_ERR_BITSTREAM or M4D_ERR_CHECKSUM for a damaged header,
- * M4D_ERR_LIMIT for a payload size above the specification's limit. */
+ * M4D_ERR_LIMIT for a payload size above the specification's limit. After a damaged header,
+ * search forward for the next header that parses and call m4d_flush: the skipped bytes may
+ * have held a packet whose loss the decoder cannot notice (KEYFRAME_STATIC is optional).
+ * After m4d_send_packet fails, search from data + 24: a damaged payload's size may be wrong. */
 M4D_API int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketInfo* info);
 
 /* Sends one whole packet (header and payload, exactly size bytes) to the decoder. The data is
