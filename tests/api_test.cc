@@ -127,6 +127,30 @@ TEST(Api, PacketHeaderParserSplitsStreams) {
   EXPECT_EQ(SplitPackets(bytes).size(), stream.packets.size());
 }
 
+TEST(Api, FindPacketResynchronisesAfterGarbage) {
+  const TestStream stream = SmallStream();
+  std::vector<uint8_t> bytes(100, 'M');  // garbage, with the sync word's first byte
+  bytes.insert(bytes.end(), stream.packets[1].begin(), stream.packets[1].end());
+  size_t offset = 7;
+  M4dPacketInfo info;
+  ASSERT_EQ(m4d_find_packet(bytes.data(), bytes.size(), &offset, &info), M4D_OK);
+  EXPECT_EQ(offset, 100u);
+  EXPECT_EQ(info.packet_size, stream.packets[1].size());
+  // Found, but the packet is incomplete.
+  EXPECT_EQ(m4d_find_packet(bytes.data(), bytes.size() - 1, &offset, &info), M4D_ERR_AGAIN);
+  EXPECT_EQ(offset, 100u);
+  EXPECT_EQ(info.packet_size, stream.packets[1].size());
+  // No header at all: all but the last 23 bytes can go.
+  EXPECT_EQ(m4d_find_packet(bytes.data(), 100, &offset, &info), M4D_ERR_AGAIN);
+  EXPECT_EQ(offset, 77u);
+  EXPECT_EQ(info.packet_size, 0u);
+  EXPECT_EQ(m4d_find_packet(bytes.data(), 10, &offset, &info), M4D_ERR_AGAIN);
+  EXPECT_EQ(offset, 0u);
+  EXPECT_EQ(m4d_find_packet(nullptr, 10, &offset, &info), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(m4d_find_packet(bytes.data(), 10, nullptr, &info), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(m4d_find_packet(bytes.data(), 10, &offset, nullptr), M4D_ERR_INVALID_ARG);
+}
+
 struct LogCapture {
   std::vector<std::string> messages;
 };

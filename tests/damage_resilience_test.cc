@@ -1,9 +1,8 @@
 // Damage resilience: bytes flipped, dropped or cut at 1000 random places in the conformance
-// streams, fed to the SDK the way a player reads a file (parse a header, send the packet;
-// after damage resynchronise on the next valid header, spec 3, and flush the decoder when
-// bytes were skipped). The decoder must never
-// crash or hang, must report the damage, must output only frames that are exactly right, and
-// must decode every GOP that starts after the damage.
+// streams, fed to the SDK the way a player reads a file (PlayBytes: resynchronise on the next
+// valid header after damage, spec 3, flushing the decoder when bytes were skipped). The decoder
+// must never crash or hang, must report the damage, must output only frames that are exactly right,
+// and must decode every GOP that starts after the damage.
 #include <gtest/gtest.h>
 
 #include <dirent.h>
@@ -71,73 +70,6 @@ std::vector<CleanStream> LoadAll() {
   return streams;
 }
 
-struct Outcome {
-  std::vector<std::pair<uint32_t, std::string>> frames;  // in output order
-  int errors = 0;         // send errors and header errors (each resynchronisation once)
-  bool leftover = false;  // an incomplete packet at the end
-  size_t steps = 0;
-};
-
-// The next offset at or after `from` where a packet header parses: its CRC matches (the
-// packet itself may run past the end).
-size_t Resync(const std::vector<uint8_t>& bytes, size_t from) {
-  M4dPacketInfo info;
-  for (size_t p = from; p + 24 <= bytes.size(); ++p) {
-    const int r = m4d_parse_packet_header(&bytes[p], bytes.size() - p, &info);
-    if (r == M4D_OK || r == M4D_ERR_AGAIN) return p;
-  }
-  return bytes.size();
-}
-
-Outcome Play(const std::vector<uint8_t>& bytes) {
-  Outcome out;
-  M4dSettings settings = DefaultSettings();
-  M4dContext* ctx = nullptr;
-  EXPECT_EQ(m4d_open(&ctx, &settings), M4D_OK);
-  auto drain = [&]() {
-    M4dFrame frame;
-    while (m4d_get_frame(ctx, &frame) == M4D_OK) {
-      out.frames.emplace_back(frame.frame_index, HashOf(frame));
-      m4d_frame_unref(&frame);
-    }
-  };
-  size_t pos = 0;
-  while (pos < bytes.size()) {
-    ++out.steps;
-    M4dPacketInfo info;
-    const int parsed = m4d_parse_packet_header(&bytes[pos], bytes.size() - pos, &info);
-    if (parsed == M4D_ERR_AGAIN) {
-      out.leftover = true;  // the stream ends inside a packet
-      break;
-    }
-    if (parsed < 0) {
-      // Bytes the decoder never sees: a packet may be lost that it cannot miss by itself (an
-      // optional KEYFRAME_STATIC), so restart it at the next GOP.
-      ++out.errors;
-      m4d_flush(ctx);
-      pos = Resync(bytes, pos + 1);
-      continue;
-    }
-    int r = m4d_send_packet(ctx, &bytes[pos], info.packet_size);
-    if (r == M4D_ERR_AGAIN) {
-      drain();
-      r = m4d_send_packet(ctx, &bytes[pos], info.packet_size);
-    }
-    drain();
-    if (r < 0) {
-      // The header was sound but the payload was not: its size may be wrong too (a byte
-      // dropped), so look for the next header right after this one.
-      ++out.errors;
-      EXPECT_STRNE(m4d_last_error(ctx), "");
-      pos = Resync(bytes, pos + 24);
-      continue;
-    }
-    pos += info.packet_size;
-  }
-  m4d_close(&ctx);
-  return out;
-}
-
 enum class Damage { kFlip, kDrop, kTruncate };
 
 TEST(DamageResilience, ThousandRandomDamagesNeverCrashAndResumeAtTheNextGop) {
@@ -153,7 +85,7 @@ TEST(DamageResilience, ThousandRandomDamagesNeverCrashAndResumeAtTheNextGop) {
     if (damage == Damage::kFlip) bytes[at] ^= static_cast<uint8_t>(1 + rng.Next() % 255);
     if (damage == Damage::kDrop) bytes.erase(bytes.begin() + at);
     if (damage == Damage::kTruncate) bytes.resize(at);
-    const Outcome out = Play(bytes);
+    const PlayResult out = PlayBytes(DefaultSettings(), bytes);
     SCOPED_TRACE(clean.name + " damage " + std::to_string(trial % 3) + " at " + std::to_string(at));
     ASSERT_LE(out.steps, bytes.size() + 1);  // every step moves forward: no hang
     // Only exact frames come out: every damaged packet is caught by a CRC.
@@ -162,12 +94,12 @@ TEST(DamageResilience, ThousandRandomDamagesNeverCrashAndResumeAtTheNextGop) {
       EXPECT_EQ(hash, clean.expected.at(index)) << "frame " << index;
     }
     if (damage != Damage::kTruncate) {
-      EXPECT_TRUE(out.errors > 0 || out.leftover);
+      EXPECT_TRUE(!out.errors.empty() || out.truncated);
     } else {
       // A cut is an incomplete packet, or at a packet boundary frames simply end early.
-      EXPECT_TRUE(out.leftover || out.frames.size() < clean.expected.size());
+      EXPECT_TRUE(out.truncated || out.frames.size() < clean.expected.size());
     }
-    reported += out.errors > 0 || out.leftover;
+    reported += !out.errors.empty() || out.truncated;
     // Every GOP that starts after the damaged byte's GOP decodes completely, in order.
     std::vector<uint32_t> got;
     for (const auto& frame : out.frames) got.push_back(frame.first);

@@ -144,6 +144,65 @@ inline DecodeResult DecodeWith(const M4dSettings& settings, const std::vector<Pa
   return result;
 }
 
+// A byte stream read the way a player reads a file (bitstream-spec 3): parse a header, send
+// the packet; after a damaged header flush the decoder and resynchronise on the next header
+// (bytes were skipped), after a failed send resynchronise right after the packet's header.
+struct PlayResult {
+  std::vector<std::pair<uint32_t, std::string>> frames;  // (frame_index, hash) in output order
+  std::vector<int> errors;                               // header and send errors, in order
+  bool truncated = false;                                // the data ends inside a packet
+  size_t steps = 0;                                      // loop iterations (each moves forward)
+};
+
+inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8_t>& bytes) {
+  PlayResult out;
+  M4dContext* ctx = nullptr;
+  if (m4d_open(&ctx, &settings) != M4D_OK) throw std::runtime_error("m4d_open failed");
+  auto drain = [&]() {
+    M4dFrame frame;
+    while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+      out.frames.emplace_back(frame.frame_index, HashOf(frame));
+      m4d_frame_unref(&frame);
+    }
+  };
+  auto resync = [&](size_t from) {
+    size_t offset = 0;
+    M4dPacketInfo info;
+    const int r = m4d_find_packet(bytes.data() + from, bytes.size() - from, &offset, &info);
+    return r == M4D_OK || info.packet_size > 0 ? from + offset : bytes.size();
+  };
+  size_t pos = 0;
+  while (pos < bytes.size()) {
+    ++out.steps;
+    M4dPacketInfo info;
+    const int parsed = m4d_parse_packet_header(&bytes[pos], bytes.size() - pos, &info);
+    if (parsed == M4D_ERR_AGAIN) {
+      out.truncated = true;
+      break;
+    }
+    if (parsed < 0) {
+      out.errors.push_back(parsed);
+      m4d_flush(ctx);
+      pos = resync(pos + 1);
+      continue;
+    }
+    int r = m4d_send_packet(ctx, &bytes[pos], info.packet_size);
+    if (r == M4D_ERR_AGAIN) {
+      drain();
+      r = m4d_send_packet(ctx, &bytes[pos], info.packet_size);
+    }
+    drain();
+    if (r < 0) {
+      out.errors.push_back(r);
+      pos = resync(pos + 24);
+      continue;
+    }
+    pos += info.packet_size;
+  }
+  m4d_close(&ctx);
+  return out;
+}
+
 inline M4dSettings DefaultSettings() {
   M4dSettings s;
   m4d_default_settings(&s);

@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -30,21 +29,20 @@ void Hex(const uint8_t md5[16], char out[33]) {
   for (int i = 0; i < 16; ++i) std::snprintf(out + 2 * i, 3, "%02x", md5[i]);
 }
 
-// Finds the next packet header at or after `pos`; returns false at the end of the data.
-bool NextPacket(const std::vector<uint8_t>& data, size_t* pos, M4dPacketInfo* info,
-                size_t* skipped) {
-  for (size_t p = *pos; p + 24 <= data.size(); ++p) {
-    if (std::memcmp(&data[p], "M4DP", 4) != 0) continue;
-    const int r = m4d_parse_packet_header(&data[p], data.size() - p, info);
-    if (r == M4D_OK || r == M4D_ERR_AGAIN) {
-      *skipped += p - *pos;
-      *pos = p;
-      if (r == M4D_ERR_AGAIN) info->packet_size = data.size() - p;  // truncated last packet
-      return true;
-    }
-  }
-  *skipped += data.size() - *pos;
-  return false;
+// The offset of the next packet header at or after `from` (the end when none); counts the
+// bytes passed over.
+size_t Resync(const std::vector<uint8_t>& data, size_t from, size_t* skipped) {
+  size_t offset = 0;
+  M4dPacketInfo info;
+  const int r = m4d_find_packet(data.data() + from, data.size() - from, &offset, &info);
+  const size_t next = (r == M4D_OK || info.packet_size > 0) ? from + offset : data.size();
+  *skipped += next - from;
+  return next;
+}
+
+void ReportError(size_t offset, int code, const char* detail) {
+  std::fprintf(stderr, "m4d_decode: byte %zu: error %d (%s): %s\n", offset, code,
+               m4d_error_string(code), detail);
 }
 
 }  // namespace
@@ -99,15 +97,28 @@ int main(int argc, char** argv) {
       m4d_frame_unref(&frame);
     }
   };
-  size_t skipped_before = 0;
-  while (NextPacket(data, &pos, &info, &skipped)) {
-    // Skipped bytes may have held a packet the decoder cannot miss by itself (an optional
-    // KEYFRAME_STATIC): restart it at the next GOP.
-    if (skipped != skipped_before) m4d_flush(ctx), skipped_before = skipped;
+  // Read as bitstream-spec 3 says: after a damaged header flush (the skipped bytes may have
+  // held a packet the decoder cannot miss by itself, an optional KEYFRAME_STATIC) and resume
+  // at the next header; after a failed packet resume right after its header (a dropped byte
+  // leaves its payload_size pointing past the next one).
+  while (pos < data.size()) {
+    int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
+    if (r == M4D_ERR_AGAIN) {
+      ReportError(pos, r, "the stream ends inside a packet");
+      ++errors;
+      break;
+    }
+    if (r < 0) {
+      ReportError(pos, r, "damaged packet header; resynchronising");
+      ++errors;
+      m4d_flush(ctx);
+      pos = Resync(data, pos + 1, &skipped);
+      continue;
+    }
     if (info.type == M4D_PACKET_SEQUENCE_HEADER) ++gop;
     if (gop >= opt.start_gop) {
       const auto t0 = std::chrono::steady_clock::now();
-      int r = m4d_send_packet(ctx, &data[pos], info.packet_size);
+      r = m4d_send_packet(ctx, &data[pos], info.packet_size);
       if (r == M4D_ERR_AGAIN) {
         drain();
         r = m4d_send_packet(ctx, &data[pos], info.packet_size);
@@ -116,10 +127,9 @@ int main(int argc, char** argv) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       drain();
       if (r < 0) {
-        // The payload was damaged and its declared size may be too (a byte dropped): look
-        // for the next header right after this one.
+        ReportError(pos, r, m4d_last_error(ctx));
         ++errors;
-        pos += 24;
+        pos = Resync(data, pos + 24, &skipped);
         continue;
       }
     }

@@ -169,6 +169,14 @@ M4D_API int m4d_open(M4dContext** c_out, const M4dSettings* s);
  * After m4d_send_packet fails, search from data + 24: a damaged payload's size may be wrong. */
 M4D_API int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketInfo* info);
 
+/* Finds the first offset in data where a packet header parses (m4d_parse_packet_header), to
+ * resynchronise after damage. Returns 0 with the header at data + *offset and its packet
+ * complete; M4D_ERR_AGAIN when more data is needed: a header was found at *offset but its
+ * packet is incomplete (info->packet_size > 0), or none starts in the data
+ * (info->packet_size = 0; the first *offset bytes hold no packet start and can be dropped);
+ * M4D_ERR_INVALID_ARG for NULL arguments. */
+M4D_API int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4dPacketInfo* info);
+
 /* Sends one whole packet (header and payload, exactly size bytes) to the decoder. The data is
  * not retained after the call. Returns:
  *   0                 the packet was consumed (a frame may now be ready);

@@ -125,6 +125,22 @@ int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketInfo* inf
   return size < info->packet_size ? M4D_ERR_AGAIN : M4D_OK;
 }
 
+int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4dPacketInfo* info) {
+  if (!data || !offset || !info) return M4D_ERR_INVALID_ARG;
+  for (size_t p = 0; p + m4d::kPacketHeaderSize <= size; ++p) {
+    if (data[p] != m4d::kPacketSync[0]) continue;
+    const int r = m4d_parse_packet_header(data + p, size - p, info);
+    if (r == M4D_OK || r == M4D_ERR_AGAIN) {
+      *offset = p;
+      return r;
+    }
+  }
+  // A header may still start in the last 23 bytes.
+  *offset = size < m4d::kPacketHeaderSize ? 0 : size - (m4d::kPacketHeaderSize - 1);
+  *info = M4dPacketInfo();
+  return M4D_ERR_AGAIN;
+}
+
 int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size) {
   if (!c) return M4D_ERR_INVALID_ARG;
   if (!data) return Fail(c, M4D_ERR_INVALID_ARG, "m4d_send_packet: data is NULL");
