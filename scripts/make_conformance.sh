@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates conformance/streams/ from the synthetic stream writer and records the expected
-# per-frame hashes of the decoded state for every layer choice. Run after a bitstream change
-# (which also bumps the version in the spec); review the diff of the .md5 files.
+# per-frame hashes of the decoded state for every layer choice, then conformance/invalid/.
+# Run after a bitstream change (which also bumps the version in the spec); review the diff of
+# the .md5 files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
@@ -29,3 +30,14 @@ for entry in "${streams[@]}"; do
 done
 (cd "$out" && md5sum ./*.m4d >MANIFEST.md5sum)
 echo "wrote $(ls "$out"/*.m4d | wc -l) streams to $out"
+
+# Invalid streams: each breaks one rule (conformance/invalid/EXPECTED names the error a decoder
+# must report first); <name>.md5 holds the frames the reference decoder still outputs.
+invalid=conformance/invalid
+mkdir -p "$invalid"
+rm -f "$invalid"/*.m4d "$invalid"/*.md5
+"$bin/m4d_make_invalid" -o "$invalid"
+for stream in "$invalid"/*.m4d; do
+  "$bin/m4d_decode" -q "$stream" -o "${stream%.m4d}.md5" 2>/dev/null || true
+done
+(cd "$invalid" && md5sum ./*.m4d >MANIFEST.md5sum)

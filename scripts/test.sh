@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds, checks formatting, checks that a clang
-# Debug build decodes bit-identically to the gcc Release build, runs a short fuzz session,
+# Debug build decodes bit-identically to the gcc Release build, runs our decoder through the
+# conformance runner, runs a short fuzz session,
 # then runs the whole test suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,5 +10,6 @@ scripts/setup.sh
 scripts/build.sh
 scripts/check_format.sh
 scripts/compare_builds.sh
+scripts/conformance_run.sh --layers-flag --layers build/release/tools/m4d_decode | tail -1
 scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
 ctest --test-dir build/release --output-on-failure -j2

@@ -22,7 +22,8 @@ struct Options {
 };
 
 void LogToStderr(void*, int level, const char* message) {
-  if (level <= M4D_LOG_WARNING) std::fprintf(stderr, "m4d: %s\n", message);
+  // Errors are reported with their byte offsets by the read loop.
+  if (level == M4D_LOG_WARNING) std::fprintf(stderr, "m4d: %s\n", message);
 }
 
 void Hex(const uint8_t md5[16], char out[33]) {

@@ -40,7 +40,7 @@ extern "C" {
 
 /* Library version (of this SDK), and the bitstream version it decodes. */
 #define M4D_VERSION_MAJOR 0
-#define M4D_VERSION_MINOR 3
+#define M4D_VERSION_MINOR 4
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
 #define M4D_BITSTREAM_VERSION_MINOR 2

@@ -1,0 +1,286 @@
+// m4d_make_invalid: writes the invalid conformance streams. Each starts from one small valid
+// stream (2 GOPs of 3 frames from the reference stream writer) and breaks one rule of the
+// specification: truncations, damaged headers and CRCs, out-of-range fields, inconsistent
+// counts, oversized declarations, damaged Draco and entropy payloads. Edits that must reach a
+// payload parser recompute the CRCs. Writes DIR/<name>.m4d and DIR/EXPECTED, one line per
+// stream: "<name> <error> <what is wrong>", where <error> is the M4D_ERR_* code a decoder must
+// report first, or TRUNCATED when the stream ends inside a packet.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/crc32.h"
+#include "m4d/m4d.h"
+#include "stream/stream_writer.h"
+#include "stream/synthetic_content.h"
+
+namespace {
+
+using Packet = std::vector<uint8_t>;
+using Stream = std::vector<Packet>;  // packets in order
+
+// The base: packets 0..7 are GOP 0 (SEQUENCE_HEADER, KEYFRAME_STATIC, KEYFRAME_DYNAMIC,
+// MLP_WEIGHTS, then MOTION_GRID and COMPENSATION of frames 1 and 2), 8..15 GOP 1.
+enum : size_t { kSeq = 0, kStatic = 1, kDynamic = 2, kMlp = 3, kMotion = 4, kComp = 5 };
+
+bool MakeBase(Stream* out) {
+  m4d::StreamWriterOptions options;
+  options.sequence.sh_degree = 1;
+  options.sequence.grid.resolution[0] = 8;
+  options.sequence.grid.resolution[1] = 12;
+  options.sequence.grid.resolution[2] = 20;
+  options.sequence.mlp.hidden_width = 16;
+  m4d::StreamWriter writer(options);
+  const float center[3] = {0, 0, 0}, fg[3] = {0.1f, 0.2f, -0.1f};
+  for (int g = 0; g < 2; ++g) {
+    const uint64_t seed = 900 + g;
+    m4d::DecodedFrame recon;
+    m4d::Status s = writer.WriteKeyframe(
+        m4d::SyntheticGaussianSet(150, 1, seed, center, 2.0f),
+        m4d::SyntheticGaussianSet(80, 1, seed + 1, fg, 0.4f),
+        m4d::SyntheticMlp(options.sequence.grid.feature_count(), options.sequence.mlp, seed),
+        &recon);
+    for (int f = 1; f < 3 && s.ok(); ++f) {
+      s = writer.WriteMotion(
+          m4d::SyntheticMotionGrid(options.sequence.grid, seed * 7 + f, -0.6f, 0.6f, 0.2f));
+      std::vector<uint8_t> removed(writer.moved_dynamic_set().size(), 0);
+      for (size_t i = f; i < removed.size(); i += 17) removed[i] = 1;
+      if (s.ok()) {
+        s = writer.WriteCompensation(
+            removed, m4d::SyntheticGaussianSet(6 + f, 1, seed * 13 + f, fg, 0.4f), &recon);
+      }
+    }
+    if (!s.ok()) {
+      std::fprintf(stderr, "m4d_make_invalid: base stream: %s\n", s.message().c_str());
+      return false;
+    }
+  }
+  const std::vector<uint8_t>& bytes = writer.bytes();
+  M4dPacketInfo info;
+  for (size_t pos = 0; pos < bytes.size(); pos += info.packet_size) {
+    if (m4d_parse_packet_header(&bytes[pos], bytes.size() - pos, &info) != M4D_OK) return false;
+    out->emplace_back(bytes.begin() + pos, bytes.begin() + pos + info.packet_size);
+  }
+  return out->size() == 16;
+}
+
+void FixCrcs(Packet* p) {
+  const uint32_t payload_crc = m4d::Crc32(p->data() + 24, p->size() - 24);
+  const uint32_t size = static_cast<uint32_t>(p->size() - 24);
+  for (int i = 0; i < 4; ++i) {
+    (*p)[12 + i] = static_cast<uint8_t>(size >> (8 * i));
+    (*p)[16 + i] = static_cast<uint8_t>(payload_crc >> (8 * i));
+  }
+  const uint32_t header_crc = m4d::Crc32(p->data(), 20);
+  for (int i = 0; i < 4; ++i) (*p)[20 + i] = static_cast<uint8_t>(header_crc >> (8 * i));
+}
+
+std::vector<uint8_t> Varuint(uint32_t v) {
+  std::vector<uint8_t> out;
+  do {
+    out.push_back(static_cast<uint8_t>((v & 0x7f) | (v >= 0x80 ? 0x80 : 0)));
+    v >>= 7;
+  } while (v);
+  return out;
+}
+
+size_t VaruintLength(const Packet& p, size_t at) {
+  size_t n = 1;
+  while (p[at + n - 1] & 0x80) ++n;
+  return n;
+}
+
+uint32_t ReadVaruint(const Packet& p, size_t at) {
+  uint32_t v = 0;
+  for (size_t i = 0; i < VaruintLength(p, at); ++i) v |= uint32_t(p[at + i] & 0x7f) << (7 * i);
+  return v;
+}
+
+// Replaces the varuint at payload offset `at` of packet p by `value` (CRCs fixed).
+void SetVaruint(Packet* p, size_t at, uint32_t value) {
+  at += 24;
+  const std::vector<uint8_t> bytes = Varuint(value);
+  p->erase(p->begin() + at, p->begin() + at + VaruintLength(*p, at));
+  p->insert(p->begin() + at, bytes.begin(), bytes.end());
+  FixCrcs(p);
+}
+
+size_t Find(const Packet& p, const char* text) {
+  const size_t n = std::strlen(text);
+  for (size_t i = 24; i + n <= p.size(); ++i) {
+    if (std::memcmp(&p[i], text, n) == 0) return i;
+  }
+  return p.size();
+}
+
+struct Case {
+  const char* name;
+  const char* error;
+  const char* what;
+  std::function<void(Stream*, std::vector<uint8_t>* tail)> edit;  // tail: bytes appended
+};
+
+// Payload offsets of SEQUENCE_HEADER (spec 4.1, three grid levels): 0 version_major,
+// 1 version_minor, 2 profile, 3 sh_degree, 16 num_levels, 17.. channels, 20.. resolutions
+// (u16), 26 mlp_hidden_layers, 27 mlp_hidden_width (u16).
+std::function<void(Stream*, std::vector<uint8_t>*)> SetHeaderByte(size_t packet, size_t offset,
+                                                                  uint8_t value, bool fix = true) {
+  return [=](Stream* s, std::vector<uint8_t>*) {
+    (*s)[packet][offset] = value;
+    if (fix) FixCrcs(&(*s)[packet]);
+  };
+}
+
+std::function<void(Stream*, std::vector<uint8_t>*)> SetPayloadByte(size_t packet, size_t offset,
+                                                                   uint8_t value) {
+  return SetHeaderByte(packet, 24 + offset, value);
+}
+
+std::vector<Case> Cases() {
+  return {
+      {"truncated_in_header", "TRUNCATED", "the stream ends 10 bytes into a packet header",
+       [](Stream* s, std::vector<uint8_t>* tail) {
+         *tail = Packet((*s)[kComp].begin(), (*s)[kComp].begin() + 10);
+         s->resize(kComp);
+       }},
+      {"truncated_in_payload", "TRUNCATED", "the stream ends half way through a payload",
+       [](Stream* s, std::vector<uint8_t>* tail) {
+         const Packet& p = (*s)[8 + kDynamic];
+         *tail = Packet(p.begin(), p.begin() + p.size() / 2);
+         s->resize(8 + kDynamic);
+       }},
+      {"bad_sync_word", "M4D_ERR_BITSTREAM", "a packet header without its sync word",
+       SetHeaderByte(kDynamic, 0, 'X')},
+      {"bad_header_crc", "M4D_ERR_CHECKSUM", "a header field changed, header CRC not updated",
+       SetHeaderByte(kDynamic, 8, 1, false)},
+      {"bad_payload_crc", "M4D_ERR_CHECKSUM", "a payload byte changed, payload CRC not updated",
+       [](Stream* s, std::vector<uint8_t>*) { (*s)[kDynamic][30] ^= 0x40; }},
+      {"reserved_flag_bit", "M4D_ERR_BITSTREAM", "flags bit 1 set", SetHeaderByte(kMotion, 5, 2)},
+      {"reserved_field", "M4D_ERR_BITSTREAM", "the reserved u16 of a header not 0",
+       SetHeaderByte(kMotion, 7, 1)},
+      {"unknown_packet_type", "M4D_ERR_UNSUPPORTED", "packet type 7", SetHeaderByte(kMotion, 4, 7)},
+      {"payload_size_above_limit", "M4D_ERR_LIMIT",
+       "a header declares a payload above MAX_PAYLOAD_SIZE (2^26)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         p[15] = 0x10;
+         const uint32_t crc = m4d::Crc32(p.data(), 20);
+         for (int i = 0; i < 4; ++i) p[20 + i] = static_cast<uint8_t>(crc >> (8 * i));
+       }},
+      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.3",
+       SetPayloadByte(kSeq, 1, M4D_BITSTREAM_VERSION_MINOR + 1)},
+      {"unsupported_profile", "M4D_ERR_UNSUPPORTED", "profile 1", SetPayloadByte(kSeq, 2, 1)},
+      {"sh_degree_out_of_range", "M4D_ERR_BITSTREAM", "sh_degree 4", SetPayloadByte(kSeq, 3, 4)},
+      {"grid_levels_out_of_range", "M4D_ERR_BITSTREAM", "num_levels 5 (MAX_GRID_LEVELS is 4)",
+       SetPayloadByte(kSeq, 16, 5)},
+      {"grid_values_above_limit", "M4D_ERR_LIMIT",
+       "a 256^3 level of 2 channels: above MAX_GRID_VALUES",
+       [](Stream* s, std::vector<uint8_t>*) {
+         (*s)[kSeq][24 + 24] = 0;
+         (*s)[kSeq][24 + 25] = 1;
+         FixCrcs(&(*s)[kSeq]);
+       }},
+      {"mlp_width_out_of_range", "M4D_ERR_BITSTREAM", "mlp_hidden_width 257",
+       [](Stream* s, std::vector<uint8_t>*) {
+         (*s)[kSeq][24 + 27] = 1;
+         (*s)[kSeq][24 + 28] = 1;
+         FixCrcs(&(*s)[kSeq]);
+       }},
+      {"keyframe_dynamic_missing", "M4D_ERR_BITSTREAM",
+       "a keyframe's KEYFRAME_DYNAMIC missing (MLP_WEIGHTS follows KEYFRAME_STATIC)",
+       [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kDynamic); }},
+      {"frame_index_gap", "M4D_ERR_BITSTREAM", "frame 2 numbered 3",
+       [](Stream* s, std::vector<uint8_t>*) {
+         (*s)[kMotion + 2][8] += 1;
+         FixCrcs(&(*s)[kMotion + 2]);
+       }},
+      {"compensation_without_motion_grid", "M4D_ERR_BITSTREAM", "frame 1's MOTION_GRID missing",
+       [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kMotion); }},
+      {"missing_end_of_frame", "M4D_ERR_BITSTREAM",
+       "the keyframe's last packet without end_of_frame", SetHeaderByte(kMlp, 5, 0)},
+      {"trailing_payload_byte", "M4D_ERR_BITSTREAM", "a byte after a gaussian_set()",
+       [](Stream* s, std::vector<uint8_t>*) {
+         (*s)[kDynamic].push_back(0);
+         FixCrcs(&(*s)[kDynamic]);
+       }},
+      {"gaussian_count_above_limit", "M4D_ERR_LIMIT",
+       "a set declares 2^22 + 1 Gaussians (MAX_GAUSSIANS_PER_SET is 2^22)",
+       [](Stream* s, std::vector<uint8_t>*) { SetVaruint(&(*s)[kDynamic], 0, (1u << 22) + 1); }},
+      {"gaussian_count_inconsistent", "M4D_ERR_BITSTREAM",
+       "a set's count one more than its Draco point count",
+       [](Stream* s, std::vector<uint8_t>*) {
+         SetVaruint(&(*s)[kDynamic], 0, ReadVaruint((*s)[kDynamic], 24) + 1);
+       }},
+      {"draco_bad_magic", "M4D_ERR_BITSTREAM", "the Draco header's magic damaged",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kStatic];
+         p[Find(p, "DRACO") + 4] = 'X';
+         FixCrcs(&p);
+       }},
+      {"draco_not_sequential", "M4D_ERR_BITSTREAM", "Draco method 1 (kd-tree) declared",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kStatic];
+         p[Find(p, "DRACO") + 8] = 1;
+         FixCrcs(&p);
+       }},
+      {"draco_payload_cut", "M4D_ERR_BITSTREAM",
+       "the last 5 bytes of a Draco payload cut (draco_size now past the payload)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         p.resize(p.size() - 5);
+         FixCrcs(&p);
+       }},
+      {"entropy_alphabet_above_limit", "M4D_ERR_LIMIT",
+       "a symbol_block with alphabet_size 4097 (MAX_ALPHABET is 4096)",
+       [](Stream* s, std::vector<uint8_t>*) { SetVaruint(&(*s)[kMotion], 28, 4097); }},
+      {"entropy_alphabet_zero", "M4D_ERR_BITSTREAM", "a symbol_block with alphabet_size 0",
+       [](Stream* s, std::vector<uint8_t>*) { SetVaruint(&(*s)[kMotion], 28, 0); }},
+      {"entropy_rans_damaged", "M4D_ERR_BITSTREAM",
+       "the last rANS payload byte of a MOTION_GRID changed (final state check)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         p.back() ^= 0x5a;
+         FixCrcs(&p);
+       }},
+      {"removed_count_inconsistent", "M4D_ERR_BITSTREAM",
+       "num_removed one more than the removal flags set",
+       [](Stream* s, std::vector<uint8_t>*) {
+         SetVaruint(&(*s)[kComp], 0, ReadVaruint((*s)[kComp], 24) + 1);
+       }},
+  };
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dir = "conformance/invalid";
+  CLI::App app{"Write the invalid conformance streams and their expected errors."};
+  app.add_option("-o,--output-dir", dir, "where to write them")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  Stream base;
+  if (!MakeBase(&base)) return 1;
+  std::ofstream expected(dir + "/EXPECTED");
+  if (!expected) {
+    std::fprintf(stderr, "m4d_make_invalid: cannot write %s/EXPECTED\n", dir.c_str());
+    return 1;
+  }
+  expected << "# <stream> <first error a decoder reports> <what is wrong>\n";
+  int written = 0;
+  for (const Case& c : Cases()) {
+    Stream stream = base;
+    std::vector<uint8_t> tail;
+    c.edit(&stream, &tail);
+    std::ofstream file(dir + "/" + c.name + ".m4d", std::ios::binary);
+    for (const Packet& p : stream) file.write(reinterpret_cast<const char*>(p.data()), p.size());
+    file.write(reinterpret_cast<const char*>(tail.data()), tail.size());
+    if (!file) return 1;
+    expected << c.name << " " << c.error << " " << c.what << "\n";
+    ++written;
+  }
+  std::printf("wrote %d invalid streams and EXPECTED to %s\n", written, dir.c_str());
+  return 0;
+}
