@@ -1,0 +1,146 @@
+// m4d_check: validates a stream against the specification, for checking any encoder's output.
+// Stricter than a decoder, which skips what it may (packets before the first
+// SEQUENCE_HEADER, data after damage): every packet must parse, follow the stream grammar of
+// spec 2 (packet order, end_of_frame, frame numbering) and decode without error with payload
+// CRCs checked. Prints every violation with its byte offset, then a summary (GOPs, frames,
+// bytes per packet type, a note when num_frames, which is informative, disagrees); exits 0
+// only for a conforming stream.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "m4d/m4d.h"
+
+namespace {
+
+const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
+                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION"};
+
+// The grammar of spec 2 as the packet types that may follow each one.
+bool MayFollow(uint32_t previous, uint32_t type) {
+  switch (previous) {
+    case 0:  // stream start
+      return type == M4D_PACKET_SEQUENCE_HEADER;
+    case M4D_PACKET_SEQUENCE_HEADER:
+      return type == M4D_PACKET_KEYFRAME_STATIC || type == M4D_PACKET_KEYFRAME_DYNAMIC;
+    case M4D_PACKET_KEYFRAME_STATIC:
+      return type == M4D_PACKET_KEYFRAME_DYNAMIC;
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      return type == M4D_PACKET_MLP_WEIGHTS;
+    case M4D_PACKET_MOTION_GRID:
+      return type == M4D_PACKET_COMPENSATION;
+    default:  // MLP_WEIGHTS or COMPENSATION ended a frame
+      return type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID;
+  }
+}
+
+struct Checker {
+  int violations = 0;
+  uint32_t previous = 0;  // type of the previous packet, 0 at the start
+  uint32_t frame = 0;     // frame_index of the previous packet
+  int gops = 0, frames = 0;
+  uint32_t declared_frames = 0;
+  size_t bytes[7] = {};
+
+  void Violation(size_t offset, const std::string& what) {
+    ++violations;
+    std::printf("byte %zu: %s\n", offset, what.c_str());
+  }
+
+  void CheckGrammar(size_t offset, const M4dPacketInfo& info) {
+    const uint32_t type = info.type;
+    const char* name = type <= 6 ? kTypeNames[type] : "unknown";
+    if (!MayFollow(previous, type)) {
+      Violation(offset, std::string(name) + " may not follow " + kTypeNames[previous]);
+    }
+    const bool ends = type == M4D_PACKET_MLP_WEIGHTS || type == M4D_PACKET_COMPENSATION;
+    if ((info.end_of_frame != 0) != ends) {
+      Violation(offset, std::string(name) + (ends ? " without" : " with") + " end_of_frame");
+    }
+    const bool starts_frame = type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID;
+    if (type == M4D_PACKET_MOTION_GRID && previous != 0 && info.frame_index != frame + 1) {
+      Violation(offset, "frame " + std::to_string(info.frame_index) + " after frame " +
+                            std::to_string(frame) + " in a GOP");
+    }
+    if (!starts_frame && previous != 0 && info.frame_index != frame) {
+      Violation(offset, std::string(name) + " of frame " + std::to_string(info.frame_index) +
+                            " inside frame " + std::to_string(frame));
+    }
+    gops += type == M4D_PACKET_SEQUENCE_HEADER;
+    frames += ends;
+    previous = type <= 6 ? type : previous;
+    frame = info.frame_index;
+  }
+};
+
+// num_frames of a SEQUENCE_HEADER (payload offset 12, u32 little-endian).
+uint32_t DeclaredFrames(const uint8_t* packet) {
+  const uint8_t* p = packet + 24 + 12;
+  return p[0] | p[1] << 8 | p[2] << 16 | static_cast<uint32_t>(p[3]) << 24;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input;
+  CLI::App app{"Check that a stream conforms to the M4D specification (for encoder output)."};
+  app.add_option("stream", input, "stream file")->required()->check(CLI::ExistingFile);
+  CLI11_PARSE(app, argc, argv);
+  std::ifstream file(input, std::ios::binary);
+  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
+                                  std::istreambuf_iterator<char>());
+  M4dSettings settings;
+  m4d_default_settings(&settings);
+  M4dContext* ctx = nullptr;
+  if (m4d_open(&ctx, &settings) < 0) return 2;
+  Checker check;
+  size_t pos = 0;
+  while (pos < data.size()) {
+    M4dPacketInfo info;
+    int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
+    if (r < 0) {
+      check.Violation(pos, r == M4D_ERR_AGAIN
+                               ? "the stream ends inside a packet"
+                               : std::string("packet header: ") + m4d_error_string(r));
+      break;  // nothing after a damaged header can be trusted
+    }
+    check.CheckGrammar(pos, info);
+    if (info.type == M4D_PACKET_SEQUENCE_HEADER && info.payload_size >= 16) {
+      const uint32_t declared = DeclaredFrames(&data[pos]);
+      if (check.declared_frames == 0) check.declared_frames = declared;
+    }
+    if (info.type <= 6) check.bytes[info.type] += info.packet_size;
+    r = m4d_send_packet(ctx, &data[pos], info.packet_size);
+    M4dFrame frame;
+    while (r == M4D_ERR_AGAIN && m4d_get_frame(ctx, &frame) == M4D_OK) {
+      m4d_frame_unref(&frame);
+      r = m4d_send_packet(ctx, &data[pos], info.packet_size);
+    }
+    while (m4d_get_frame(ctx, &frame) == M4D_OK) m4d_frame_unref(&frame);
+    if (r < 0) check.Violation(pos, std::string("decoding: ") + m4d_last_error(ctx));
+    pos += info.packet_size;
+  }
+  m4d_close(&ctx);
+  if (check.previous != 0 && check.previous != M4D_PACKET_MLP_WEIGHTS &&
+      check.previous != M4D_PACKET_COMPENSATION) {
+    check.Violation(data.size(), "the stream ends inside a frame");
+  }
+  if (data.empty()) check.Violation(0, "empty stream");
+  if (check.declared_frames != 0 && check.declared_frames != static_cast<uint32_t>(check.frames)) {
+    // Informative in the specification: a note, not a violation.
+    std::printf("note: num_frames declares %u frames, the stream has %d\n", check.declared_frames,
+                check.frames);
+  }
+  std::printf("%s: %d GOPs, %d frames, %zu bytes\n", input.c_str(), check.gops, check.frames,
+              data.size());
+  for (uint32_t t = 1; t <= 6; ++t) {
+    std::printf("  %-18s %12zu bytes\n", kTypeNames[t], check.bytes[t]);
+  }
+  std::printf("%s\n", check.violations == 0
+                          ? "conforms"
+                          : (std::to_string(check.violations) + " violations").c_str());
+  return check.violations == 0 ? 0 : 1;
+}
