@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer decode target with clang (ASan + UBSan) and fuzzes for N seconds
-# (default 60) from a seed corpus of synthetic streams. Prints executions and exits non-zero
-# when the fuzzer finds a crash (the reproducer is left in build/fuzz/).
+# Builds the libFuzzer targets of the decoder with clang (ASan + UBSan), fuzzes the whole
+# decode loop for N seconds (default 60) from a seed corpus of synthetic streams, then each
+# other stream target (packet headers, every layer decoder, allocation failure) for
+# M4D_FUZZ_EACH seconds (default 10). Prints executions per target and exits non-zero when a
+# fuzzer finds a crash (the reproducer is left in build/fuzz/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -9,7 +11,9 @@ seconds=${1:-60}
 fuzz=build/fuzz
 CC=clang CXX=clang++ cmake -S . -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DM4D_FUZZ=ON -DM4D_BUILD_BENCH=OFF >/dev/null
-cmake --build "$fuzz" --target decode_fuzzer m4d_synth
+targets=(packet_header_fuzzer gaussian_set_fuzzer mlp_weights_fuzzer motion_grid_fuzzer
+  symbol_block_fuzzer inter_frame_fuzzer alloc_failure_fuzzer)
+cmake --build "$fuzz" --target decode_fuzzer m4d_synth "${targets[@]}"
 
 corpus="$fuzz/corpus"
 if [ ! -d "$corpus" ]; then
@@ -26,12 +30,22 @@ if [ ! -d "$corpus" ]; then
   done
 fi
 cd "$fuzz"
-status=0
-ASAN_OPTIONS=detect_leaks=1 ./tests/decode_fuzzer -max_total_time="$seconds" -rss_limit_mb=4096 \
-  -max_len=262144 -print_final_stats=1 corpus >fuzz.log 2>&1 || status=$?
-grep -E "stat::number_of_executed_units|stat::peak_rss_mb|ERROR|SUMMARY|Test unit written" fuzz.log || true
-if [ "$status" -ne 0 ]; then
-  echo "fuzz: the fuzzer failed (exit $status); see $fuzz/fuzz.log" >&2
-  exit "$status"
-fi
-echo "fuzz: ${seconds}s without a finding"
+# run TARGET SECONDS CORPUS...: fuzzes, prints executions, stops the script on a finding.
+run() {
+  local target=$1 seconds=$2 status=0
+  shift 2
+  mkdir -p "corpus_$target"
+  ASAN_OPTIONS=detect_leaks=1 "./tests/$target" -max_total_time="$seconds" -rss_limit_mb=4096 \
+    -max_len=262144 -print_final_stats=1 "corpus_$target" "$@" >"$target.log" 2>&1 || status=$?
+  printf "%-24s %8s s %12s executions\n" "$target" "$seconds" \
+    "$(grep -o 'stat::number_of_executed_units: [0-9]*' "$target.log" | grep -o '[0-9]*$')"
+  if [ "$status" -ne 0 ]; then
+    grep -E "ERROR|SUMMARY|Test unit written" "$target.log" || true
+    echo "fuzz: $target failed (exit $status); see $fuzz/$target.log" >&2
+    exit "$status"
+  fi
+}
+run decode_fuzzer "$seconds" corpus
+run packet_header_fuzzer "${M4D_FUZZ_EACH:-10}" ../../conformance/streams
+for target in "${targets[@]:1}"; do run "$target" "${M4D_FUZZ_EACH:-10}"; done
+echo "fuzz: no finding"
