@@ -4,6 +4,7 @@
 #define M4D_TESTS_STREAM_TEST_UTIL_H_
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
