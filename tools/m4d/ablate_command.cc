@@ -95,12 +95,15 @@ Status RunAblate(AblateArguments args) {
   }
   const std::filesystem::path dir(args.out.dir);
   std::ofstream((dir / "ablate.json").string()) << rows.dump(2) << "\n";
-  const Status plot = PlotRdCurves(curves, (dir / "ablate.png").string());
-  if (!plot.ok()) std::fprintf(stderr, "m4d ablate: no plot: %s\n", plot.message().c_str());
+  for (const Status& plot :
+       {PlotRdCurves(curves, (dir / "ablate.png").string(), RateScope::kAllFrames),
+        PlotRdCurves(curves, (dir / "ablate_inter.png").string(), RateScope::kInterFrames)}) {
+    if (!plot.ok()) std::fprintf(stderr, "m4d ablate: no plot: %s\n", plot.message().c_str());
+  }
   std::printf(
       "\nBD against the full method (PCHIP Bjontegaard over each RD envelope; all frames: KB "
       "per frame, keyframes included); n/a: fewer than two points or no common range\nreport "
-      "%s, plot %s\n",
+      "%s, plots %s and ablate_inter.png\n",
       (dir / "ablate.json").c_str(), (dir / "ablate.png").c_str());
   return Status::Ok();
 }

@@ -80,12 +80,14 @@ Status RunRd(RdArguments args) {
   for (size_t c = 1; c < curves.size(); ++c) doc["bd"].push_back(CompareWith(curves[0], curves[c]));
   const std::filesystem::path dir(args.out.dir);
   std::ofstream((dir / "rd.json").string()) << doc.dump(2) << "\n";
-  for (const Status& plot : {PlotRdCurves(curves, (dir / "rd.png").string()),
-                             PlotPsnrPerFrame(curves[0], (dir / "psnr_per_frame.png").string())}) {
+  for (const Status& plot :
+       {PlotRdCurves(curves, (dir / "rd.png").string(), RateScope::kAllFrames),
+        PlotRdCurves(curves, (dir / "rd_inter.png").string(), RateScope::kInterFrames),
+        PlotPsnrPerFrame(curves[0], (dir / "psnr_per_frame.png").string())}) {
     if (!plot.ok()) std::fprintf(stderr, "m4d rd: no plot: %s\n", plot.message().c_str());
   }
-  std::printf("\nreport %s; plots rd.png and psnr_per_frame.png in %s\n", (dir / "rd.json").c_str(),
-              args.out.dir.c_str());
+  std::printf("\nreport %s; plots rd.png, rd_inter.png and psnr_per_frame.png in %s\n",
+              (dir / "rd.json").c_str(), args.out.dir.c_str());
   return Status::Ok();
 }
 

@@ -308,18 +308,32 @@ nlohmann::json RdCurveJson(const RdCurve& curve) {
   return {{"label", curve.label}, {"points", points}};
 }
 
-Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png) {
+Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png, RateScope scope) {
+  const bool all = scope == RateScope::kAllFrames;
   std::ostringstream s;
-  s << PlotHeader(png, "Rate-distortion (held-out camera)", "KB per frame (keyframes included)",
-                  "PSNR (dB)");
-  s << "plot ";
-  for (size_t c = 0; c < curves.size(); ++c) {
-    s << (c ? ", " : "") << "'-' using 1:2 with linespoints lw 2 title '" << curves[c].label << "'";
-  }
-  s << "\n";
+  s << PlotHeader(png, all ? "Rate-distortion (held-out camera)" : "Inter frames (held-out camera)",
+                  all ? "KB per frame (keyframes included)" : "KB per inter frame",
+                  all ? "PSNR (dB)" : "inter-frame PSNR (dB)");
+  std::vector<std::vector<std::pair<double, double>>> data;  // per curve, by rate
+  std::string plot;
   for (const RdCurve& curve : curves) {
-    for (const RdPoint& p : curve.points)
-      s << p.summary.kb_per_frame << " " << p.summary.psnr << "\n";
+    std::vector<std::pair<double, double>> points;
+    for (const RdPoint& p : curve.points) {
+      if (all) points.emplace_back(p.summary.kb_per_frame, p.summary.psnr);
+      if (!all && p.summary.kb_per_inter_frame > 0) {
+        points.emplace_back(p.summary.kb_per_inter_frame, p.inter_psnr);
+      }
+    }
+    if (points.empty()) continue;
+    std::sort(points.begin(), points.end());
+    plot += (plot.empty() ? "plot " : ", ") +
+            std::string("'-' using 1:2 with linespoints lw 2 title '") + curve.label + "'";
+    data.push_back(std::move(points));
+  }
+  if (data.empty()) return Status::Ok();
+  s << plot << "\n";
+  for (const auto& points : data) {
+    for (const auto& [rate, psnr] : points) s << rate << " " << psnr << "\n";
     s << "e\n";
   }
   return RunGnuplot(s.str());

@@ -77,7 +77,8 @@ nlohmann::json RdCurveJson(const RdCurve& curve);
 
 // PSNR against KB per frame for each curve, with gnuplot; M4D_ERR_UNSUPPORTED when gnuplot
 // is missing.
-Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png);
+// Points joined by rate; over inter frames, curves without any are left out.
+Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png, RateScope scope);
 // Held-out PSNR per frame, one line per lambda of the curve.
 Status PlotPsnrPerFrame(const RdCurve& curve, const std::string& png);
 
