@@ -16,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (m4d::ReadGaussianSet(&reader, sh_degree, 1u << 16, &set).ok()) {
     const size_t n = set.size();
     if (n > (1u << 16) || set.positions.size() != 3 * n || set.rotations.size() != 4 * n ||
-        set.opacity_logits.size() != n || set.sh.size() != static_cast<size_t>(set.sh_floats()) * n) {
+        set.opacity_logits.size() != n ||
+        set.sh.size() != static_cast<size_t>(set.sh_floats()) * n) {
       std::abort();
     }
   }

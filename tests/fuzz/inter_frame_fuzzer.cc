@@ -30,8 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool motion = (data[0] & 1) == 0;
   std::vector<m4d::testing::Packet> packets(Prefix().begin(), Prefix().begin() + (motion ? 4 : 5));
   packets.emplace_back();
-  m4d::AppendPacket(motion ? M4D_PACKET_MOTION_GRID : M4D_PACKET_COMPENSATION, 1, !motion,
-                    data + 1, size - 1, &packets.back());
+  m4d::AppendPacket(motion ? M4D_PACKET_MOTION_GRID : M4D_PACKET_COMPENSATION, 1, !motion, data + 1,
+                    size - 1, &packets.back());
   if (motion) packets.push_back(Prefix()[5]);
   m4d::testing::DecodeWith(m4d::testing::DefaultSettings(), packets);
   return 0;

@@ -18,9 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   size_t offset = 0;
   const int found = m4d_find_packet(data, size, &offset, &info);
   if (offset > size) std::abort();
-  if (found == M4D_OK &&
-      (m4d_parse_packet_header(data + offset, size - offset, &info) != M4D_OK ||
-       offset + info.packet_size > size)) {
+  if (found == M4D_OK && (m4d_parse_packet_header(data + offset, size - offset, &info) != M4D_OK ||
+                          offset + info.packet_size > size)) {
     std::abort();
   }
   m4d::ByteReader reader(data, size);
