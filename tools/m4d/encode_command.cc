@@ -76,6 +76,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "start from this trained first keyframe (a 3DGS PLY, e.g. from m4d train) "
                   "instead of training it")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--max-gaussians", a->max_gaussians,
+                  "at most this many Gaussians after densification (keyframes and retraining; "
+                  "default: the schedule's 1000000)")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -170,8 +174,8 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"first_frame", o.first_frame},
           {"frame_count", o.frame_count},
           {"keyframe_ply", args.keyframe_ply},
-          {"keyframe_iterations",
-           args.keyframe_iterations > 0 ? args.keyframe_iterations : o.keyframe.iterations},
+          {"keyframe_iterations", KeyframeSchedule(args).iterations},
+          {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"retrain_iterations", o.retrain_iterations},
           {"lambda", lambda},
           {"sh_degree", o.sh_degree},
@@ -198,15 +202,21 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"seed", o.seed}};
 }
 
+KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
+  KeyframeTrainingOptions o = args.keyframe_iterations > 0
+                                  ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
+                                  : args.encoder.keyframe;
+  if (args.max_gaussians > 0) o.densification.max_gaussians = args.max_gaussians;
+  return o;
+}
+
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   EncoderOptions options = args.encoder;
   if (!args.rate_point.empty()) {
     M4D_RETURN_IF_ERROR(RatePointLambda(args.rate_point, &options.motion.rate_weight));
   }
   if (options.gop.fixed_length > 0) options.gop.adaptive = false;
-  if (args.keyframe_iterations > 0) {
-    options.keyframe = KeyframeTrainingOptions::Short(args.keyframe_iterations);
-  }
+  options.keyframe = KeyframeSchedule(args);
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
 

@@ -21,6 +21,7 @@ struct EncodeArguments {
   EncoderOptions encoder;
   std::string rate_point;       // r1..r5, or empty for --lambda
   int keyframe_iterations = 0;  // 0: the options' schedule
+  int max_gaussians = 0;        // cap of keyframe training and retraining (0: the schedule's)
   std::string keyframe_ply;     // first keyframe read from here instead of trained
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
@@ -31,6 +32,10 @@ struct EncodeArguments {
 
 // The paper's rate points: r1 (lowest rate) .. r5 = lambda_2 5e-4 .. 5e-5.
 Status RatePointLambda(const std::string& name, double* lambda);
+
+// The keyframe training schedule the arguments ask for: the options' schedule, or the short
+// schedule scaled to keyframe_iterations, capped at max_gaussians.
+KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args);
 
 // Adds the encoder's options (stages, GOP, ablations, rate) to a command.
 void AddEncoderOptions(CLI::App* command, EncodeArguments* args);

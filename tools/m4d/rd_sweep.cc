@@ -45,9 +45,7 @@ std::string PlotHeader(const std::string& png, const char* title, const char* x,
 // Trains one frame with the sweep's keyframe schedule into a 3DGS PLY, showing progress.
 Status TrainToPly(const Capture& capture, int frame, const EncodeArguments& args,
                   const std::string& path) {
-  KeyframeTrainingOptions o = args.keyframe_iterations > 0
-                                  ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
-                                  : args.encoder.keyframe;
+  KeyframeTrainingOptions o = KeyframeSchedule(args);
   o.sh_degree = args.encoder.sh_degree;
   o.threads = args.encoder.threads;
   o.seed = args.encoder.seed;
@@ -205,9 +203,8 @@ Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCu
   const int frames =
       args.encoder.frame_count > 0 ? std::min(args.encoder.frame_count, available) : available;
   if (frames <= 0) return Status(M4D_ERR_INVALID_ARG, "first frame beyond the capture");
-  std::printf(
-      "\n== %s: every frame trained on its own (%d iterations) ==\n", curve->label.c_str(),
-      args.keyframe_iterations > 0 ? args.keyframe_iterations : args.encoder.keyframe.iterations);
+  std::printf("\n== %s: every frame trained on its own (%d iterations) ==\n", curve->label.c_str(),
+              KeyframeSchedule(args).iterations);
   std::vector<std::string> paths;
   for (int t = first; t < first + frames; ++t) {
     char name[32];
