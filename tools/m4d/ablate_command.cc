@@ -117,7 +117,9 @@ void AddAblateCommand(CLI::App* app, int* exit_code) {
   AddCaptureArguments(cmd, &args->encode.capture);
   AddEncoderOptions(cmd, &args->encode);
   AddSweepOutputOptions(cmd, &args->out);
-  cmd->add_option("--lambdas", args->lambdas, "rate weights lambda_2 (default: the paper's)")
+  cmd->add_option("--lambdas", args->lambdas,
+                  "rate weights lambda_2, each with the nearest rate point's other settings "
+                  "(default: the paper's, r1..r5)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   cmd->add_option("--fixed-gop-length", args->fixed_gop, "GOP length of the fixed-GOP ablation")

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_status.h"
+#include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
 #include "sequence_report_output.h"
@@ -18,18 +19,6 @@
 #include "view_strip.h"
 
 namespace m4d {
-
-Status RatePointLambda(const std::string& name, double* lambda) {
-  static const char* kNames[] = {"r1", "r2", "r3", "r4", "r5"};
-  static const double kLambdas[] = {5e-4, 3e-4, 2e-4, 1e-4, 5e-5};
-  for (int i = 0; i < 5; ++i) {
-    if (name == kNames[i]) {
-      *lambda = kLambdas[i];
-      return Status::Ok();
-    }
-  }
-  return Status(M4D_ERR_INVALID_ARG, "unknown rate point '" + name + "' (r1..r5)");
-}
 
 namespace {
 
@@ -62,10 +51,16 @@ Status AppendToVideo(const std::string& dir, const std::vector<const Image*>& im
 
 void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   EncoderOptions& o = a->encoder;
-  cmd->add_option("--lambda", o.motion.rate_weight, "rate weight lambda_2 of motion estimation")
-      ->capture_default_str();
+  CLI::Option* lambda =
+      cmd->add_option("--lambda", a->lambda,
+                      "rate weight lambda_2 of motion estimation; the other settings are those "
+                      "of the rate point with the nearest lambda_2")
+          ->check(CLI::NonNegativeNumber)
+          ->capture_default_str();
   cmd->add_option("--rate-point", a->rate_point,
-                  "named rate point r1 (smallest) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, 1e-4, 5e-5");
+                  "named rate point r1 (fewest bytes) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, 1e-4, "
+                  "5e-5, with tau_g and bit depths (README)")
+      ->excludes(lambda);
   cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();
@@ -110,6 +105,13 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "compensation training per frame")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--lambda3", a->lambda3,
+                  "sparsity weight lambda_3 of compensation (default 5e-5)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tau-g", a->tau_g,
+                  "compensation: view-space gradient above which a Gaussian is replicated "
+                  "(default: the rate point's)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
       ->capture_default_str();
   cmd->add_option("--gop-psnr-drop", o.gop.max_psnr_drop,
@@ -134,35 +136,62 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       "ablation: motion trained without the rate term");
   cmd->add_flag("--independent-frames", o.independent_frames,
                 "baseline: every frame trained from scratch and coded as a static keyframe");
-  GaussianQuantization& q = o.quantization;
-  const auto bits = CLI::Range(1, 24);
-  cmd->add_option("--position-bits", q.position_bits, "Gaussian coding: bits per position axis")
-      ->check(bits)
-      ->capture_default_str();
-  cmd->add_option("--scale-bits", q.log_scale_bits, "bits per log-scale")
-      ->check(bits)
-      ->capture_default_str();
-  cmd->add_option("--rotation-bits", q.rotation_bits, "bits per quaternion component")
-      ->check(bits)
-      ->capture_default_str();
-  cmd->add_option("--opacity-bits", q.opacity_bits, "bits per opacity")
-      ->check(bits)
-      ->capture_default_str();
-  cmd->add_option("--color-bits", q.sh_dc_bits, "bits per SH DC coefficient")
-      ->check(bits)
-      ->capture_default_str();
-  cmd->add_option("--sh-bits", q.sh_rest_bits, "bits per higher SH coefficient")
-      ->check(bits)
-      ->capture_default_str();
+  cmd->add_option("--keyframe-bits", a->keyframe_bits,
+                  "keyframe Gaussians' bits: position,scale,rotation,opacity,color,sh "
+                  "(default: the rate point's)")
+      ->expected(6)
+      ->delimiter(',')
+      ->check(CLI::Range(1, 24));
+  cmd->add_option("--compensation-bits", a->compensation_bits,
+                  "compensated Gaussians' bits: position,scale,rotation,opacity,color,sh "
+                  "(default: the rate point's)")
+      ->expected(6)
+      ->delimiter(',')
+      ->check(CLI::Range(1, 24));
   cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
 }
 
+namespace {
+
+GaussianQuantization QuantizationFromBits(const std::vector<int>& b) {
+  GaussianQuantization q;
+  q.position_bits = b[0];
+  q.log_scale_bits = b[1];
+  q.rotation_bits = b[2];
+  q.opacity_bits = b[3];
+  q.sh_dc_bits = b[4];
+  q.sh_rest_bits = b[5];
+  return q;
+}
+
+std::vector<int> QuantizationBits(const GaussianQuantization& q) {
+  return {q.position_bits, q.log_scale_bits, q.rotation_bits,
+          q.opacity_bits,  q.sh_dc_bits,     q.sh_rest_bits};
+}
+
+}  // namespace
+
+Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* options) {
+  *options = args.encoder;
+  RatePointSettings point = RatePointForLambda(args.lambda);
+  if (!args.rate_point.empty()) M4D_RETURN_IF_ERROR(FindRatePoint(args.rate_point, &point));
+  ApplyRatePoint(point, options);
+  if (args.lambda3 >= 0) options->compensation.sparsity_weight = args.lambda3;
+  if (args.tau_g >= 0) options->compensation_thresholds.gradient = static_cast<float>(args.tau_g);
+  if (args.keyframe_bits.size() == 6)
+    options->quantization = QuantizationFromBits(args.keyframe_bits);
+  if (args.compensation_bits.size() == 6) {
+    options->compensation_quantization = QuantizationFromBits(args.compensation_bits);
+  }
+  if (options->gop.fixed_length > 0) options->gop.adaptive = false;
+  options->keyframe = KeyframeSchedule(args);
+  return Status::Ok();
+}
+
 nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
-  const EncoderOptions& o = args.encoder;
-  const GaussianQuantization& q = o.quantization;
-  double lambda = o.motion.rate_weight;
-  if (!args.rate_point.empty()) RatePointLambda(args.rate_point, &lambda);  // checked before
+  EncoderOptions o;
+  ResolveEncoderOptions(args, &o);  // the rate point name was checked before
   const CaptureOptions& c = args.capture.capture;
   return {{"dataset", args.capture.dataset},
           {"capture",
@@ -177,7 +206,10 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"retrain_iterations", o.retrain_iterations},
-          {"lambda", lambda},
+          {"rate_point", args.rate_point},
+          {"lambda", o.motion.rate_weight},
+          {"lambda3", o.compensation.sparsity_weight},
+          {"tau_g", o.compensation_thresholds.gradient},
           {"sh_degree", o.sh_degree},
           {"lookahead", {o.lookahead_frames, o.lookahead_step}},
           {"decoupling_thresholds",
@@ -196,9 +228,8 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"compensation", o.ablation.compensation},
           {"rate_term", o.ablation.rate_term},
           {"independent_frames", o.independent_frames},
-          {"quantization_bits",
-           {q.position_bits, q.log_scale_bits, q.rotation_bits, q.opacity_bits, q.sh_dc_bits,
-            q.sh_rest_bits}},
+          {"keyframe_bits", QuantizationBits(o.quantization)},
+          {"compensation_bits", QuantizationBits(o.compensation_quantization)},
           {"seed", o.seed}};
 }
 
@@ -211,12 +242,8 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
 }
 
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
-  EncoderOptions options = args.encoder;
-  if (!args.rate_point.empty()) {
-    M4D_RETURN_IF_ERROR(RatePointLambda(args.rate_point, &options.motion.rate_weight));
-  }
-  if (options.gop.fixed_length > 0) options.gop.adaptive = false;
-  options.keyframe = KeyframeSchedule(args);
+  EncoderOptions options;
+  M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
 

@@ -7,6 +7,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "capture_arguments.h"
 #include "common/status.h"
@@ -19,10 +20,15 @@ namespace m4d {
 struct EncodeArguments {
   CaptureArguments capture;
   EncoderOptions encoder;
-  std::string rate_point;       // r1..r5, or empty for --lambda
-  int keyframe_iterations = 0;  // 0: the options' schedule
-  int max_gaussians = 0;        // cap of keyframe training and retraining (0: the schedule's)
-  std::string keyframe_ply;     // first keyframe read from here instead of trained
+  std::string rate_point;          // r1..r5, or empty for lambda's nearest
+  double lambda = 1e-4;            // lambda_2 when rate_point is empty (1e-4: r4)
+  int keyframe_iterations = 0;     // 0: the options' schedule
+  int max_gaussians = 0;           // cap of keyframe training and retraining (0: the schedule's)
+  std::string keyframe_ply;        // first keyframe read from here instead of trained
+  double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
+  double tau_g = -1;               // compensation's replication threshold (< 0: the rate point's)
+  std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
+  std::vector<int> compensation_bits;  // 6 bit depths (empty: the rate point's)
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)
@@ -30,8 +36,9 @@ struct EncodeArguments {
   std::function<Status(int frame, GaussianModel* model)> keyframe_source;
 };
 
-// The paper's rate points: r1 (lowest rate) .. r5 = lambda_2 5e-4 .. 5e-5.
-Status RatePointLambda(const std::string& name, double* lambda);
+// The encoder options the arguments ask for: the rate point's settings (rate_point, or the one
+// nearest lambda), then the explicit overrides, the GOP choice and the keyframe schedule.
+Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* options);
 
 // The keyframe training schedule the arguments ask for: the options' schedule, or the short
 // schedule scaled to keyframe_iterations, capped at max_gaussians.

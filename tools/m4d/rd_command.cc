@@ -102,12 +102,14 @@ void AddRdCommand(CLI::App* app, int* exit_code) {
   AddCaptureArguments(cmd, &args->encode.capture);
   AddEncoderOptions(cmd, &args->encode);
   AddSweepOutputOptions(cmd, &args->out);
-  cmd->add_option("--lambdas", args->lambdas, "rate weights lambda_2 (default: the paper's)")
+  cmd->add_option("--lambdas", args->lambdas,
+                  "rate weights lambda_2, each with the nearest rate point's other settings "
+                  "(default: the paper's, r1..r5)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   cmd->add_option("--baselines", args->baselines,
-                  "static: every frame trained and coded on its own, over a quantization "
-                  "ladder; dynamic: every Gaussian dynamic, over the lambdas; none")
+                  "static: every frame trained and coded on its own, at each rate point's "
+                  "keyframe bits; dynamic: every Gaussian dynamic, over the lambdas; none")
       ->delimiter(',')
       ->check(CLI::IsMember({"static", "dynamic", "none"}))
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "capture_arguments.h"
+#include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
@@ -119,38 +120,14 @@ Status RunPoint(EncodeArguments run, const SweepOutput& out, RdPoint* point) {
   return ReadPoint(run.output + ".json", point);
 }
 
-// Coarser and coarser Gaussian coding: (position, log-scale, rotation, opacity, SH DC, higher
-// SH) bits, the encoder's default first.
-const std::vector<GaussianQuantization>& StaticLadder() {
-  static const std::vector<GaussianQuantization> kLadder = [] {
-    // Measured on the default scene's first frame: the higher SH coefficients need at least 3
-    // bits (at 2 the frame loses 6.5 dB: one step for all of them leaves no level near zero),
-    // the other groups lose 0.5 to 1 dB a step below these.
-    const int bits[][6] = {{16, 8, 10, 8, 8, 5},
-                           {15, 7, 9, 7, 7, 4},
-                           {14, 7, 9, 7, 7, 3},
-                           {13, 6, 8, 6, 6, 3},
-                           {12, 5, 7, 5, 5, 3}};
-    std::vector<GaussianQuantization> ladder;
-    for (const auto& b : bits) {
-      GaussianQuantization q;
-      q.position_bits = b[0];
-      q.log_scale_bits = b[1];
-      q.rotation_bits = b[2];
-      q.opacity_bits = b[3];
-      q.sh_dc_bits = b[4];
-      q.sh_rest_bits = b[5];
-      ladder.push_back(q);
-    }
-    return ladder;
-  }();
-  return kLadder;
-}
-
 }  // namespace
 
 const std::vector<double>& PaperLambdas() {
-  static const std::vector<double> kLambdas = {5e-4, 3e-4, 2e-4, 1e-4, 5e-5};
+  static const std::vector<double> kLambdas = [] {
+    std::vector<double> lambdas;
+    for (const RatePointSettings& p : RatePoints()) lambdas.push_back(p.motion_rate_weight);
+    return lambdas;
+  }();
   return kLambdas;
 }
 
@@ -182,7 +159,7 @@ Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
                 lambdas.size());
     EncodeArguments run = args;
     run.rate_point.clear();
-    run.encoder.motion.rate_weight = lambdas[i];
+    run.lambda = lambdas[i];
     run.output =
         (std::filesystem::path(out.dir) / (name + "_lambda" + LambdaName(lambdas[i]) + ".m4d"))
             .string();
@@ -224,14 +201,14 @@ Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCu
     M4D_RETURN_IF_ERROR(ReadGaussianPly(paths[frame - first], &set));
     return ModelFromGaussianSet(set, sh_degree, model);
   };
-  const std::vector<GaussianQuantization>& ladder = StaticLadder();
+  // The rate points' keyframe coding, finest first: the same Gaussian coding as our keyframes.
+  const std::vector<RatePointSettings>& ladder = RatePoints();
   for (size_t i = 0; i < ladder.size(); ++i) {
-    const GaussianQuantization& q = ladder[i];
-    char name[64];
-    std::snprintf(name, sizeof(name), "bits %d/%d/%d/%d/%d/%d", q.position_bits, q.log_scale_bits,
-                  q.rotation_bits, q.opacity_bits, q.sh_dc_bits, q.sh_rest_bits);
-    std::printf("\n== %s: %s (%zu of %zu) ==\n", curve->label.c_str(), name, i + 1, ladder.size());
-    run.encoder.quantization = q;
+    const RatePointSettings& rate_point = ladder[ladder.size() - 1 - i];
+    const std::string name = rate_point.name + " bits " + QuantizationName(rate_point.keyframe);
+    std::printf("\n== %s: %s (%zu of %zu) ==\n", curve->label.c_str(), name.c_str(), i + 1,
+                ladder.size());
+    run.rate_point = rate_point.name;
     run.output =
         (std::filesystem::path(out.dir) / ("static_q" + std::to_string(i) + ".m4d")).string();
     RdPoint point;

@@ -48,13 +48,14 @@ void AddSweepOutputOptions(CLI::App* command, SweepOutput* out);
 // args->keyframe_ply is already set.
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args);
 
-// Encodes with each lambda into dir/<name>_lambda<L>.m4d (and its JSON).
+// Encodes with each lambda (and the settings of the rate point nearest it) into
+// dir/<name>_lambda<L>.m4d (and its JSON).
 Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
                 const SweepOutput& out, const std::string& name, RdCurve* curve);
 
-// The per-frame baseline (every frame trained on its own, coded as a static keyframe) at
-// each step of a quantization ladder, into dir/static_q<i>.m4d. Each frame is trained once
-// (dir/frame_<t>.ply; the first frame's model is the shared keyframe).
+// The per-frame baseline (every frame trained on its own, coded as a static keyframe) at each
+// rate point's keyframe coding, finest first, into dir/static_q<i>.m4d. Each frame is trained
+// once (dir/frame_<t>.ply; the first frame's model is the shared keyframe).
 Status RunStaticLadder(const EncodeArguments& args, const SweepOutput& out, RdCurve* curve);
 
 // Which frames a rate point's rate and PSNR are means over. Over all frames keyframes dominate

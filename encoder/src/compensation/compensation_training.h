@@ -9,6 +9,10 @@
 // whose opacity falls below a threshold (every prune_interval iterations and at the end) or
 // that no training view sees. Moved Gaussians that no training view sees any more are removed
 // too, so the dynamic set cannot grow without bound over a long GOP.
+// In 60 iterations the norm prunes little: Adam moves a logit about one learning rate a step
+// whatever lambda_3 is, and replicas start as opaque as their parents (on the default scene
+// lambda_3 from 5e-5 to 1e-3 keeps 353 of the same candidates). How many Gaussians an inter
+// frame adds is steered by the replication threshold tau_g instead (pipeline/rate_points.h).
 #ifndef M4D_ENCODER_COMPENSATION_COMPENSATION_TRAINING_H_
 #define M4D_ENCODER_COMPENSATION_COMPENSATION_TRAINING_H_
 

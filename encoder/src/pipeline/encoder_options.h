@@ -47,7 +47,9 @@ struct EncoderOptions {
   GridConfig grid;  // the paper's: 4 x 32^3, 4 x 64^3, 2 x 128^3
   MlpConfig mlp;    // one hidden layer of 64
   float grid_steps[kMaxGridLevels] = {1.0f / 32, 1.0f / 32, 1.0f / 32, 1.0f / 32};
-  GaussianQuantization quantization;
+  GaussianQuantization quantization;  // keyframes
+  // Compensated Gaussians: a few hundred per frame, where every byte of each one counts.
+  GaussianQuantization compensation_quantization;
   int mlp_bits = 12;
   uint32_t fps_num = 30, fps_den = 1;
 

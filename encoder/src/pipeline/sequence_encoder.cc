@@ -54,6 +54,7 @@ StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames) {
   w.sequence.grid = o.grid;
   w.sequence.mlp = o.mlp;
   w.quantization = o.quantization;
+  w.compensation_quantization = o.compensation_quantization;
   w.mlp_bits = o.mlp_bits;
   return w;
 }

@@ -102,7 +102,7 @@ Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,
   ByteWriter writer(&payload);
   writer.WriteVarUint(num_removed);
   if (num_removed > 0) M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), &writer));
-  M4D_RETURN_IF_ERROR(WriteGaussianSet(added, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(added, options_.compensation_quantization, &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_COMPENSATION, true, payload));
   motion_written_ = false;
   return TakeReconstruction(recon);

@@ -18,7 +18,8 @@ namespace m4d {
 
 struct StreamWriterOptions {
   SequenceHeader sequence;
-  GaussianQuantization quantization;
+  GaussianQuantization quantization;               // keyframe layers
+  GaussianQuantization compensation_quantization;  // compensated Gaussians of inter frames
   int mlp_bits = 12;
 };
 
