@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates conformance/streams/ from the synthetic stream writer and records the expected
+# Regenerates conformance/streams/ (from the reference encoder on a small built-in scene, and
+# from the synthetic stream writer for the sizes no capture reaches) and records the expected
 # per-frame hashes of the decoded state for every layer choice, then conformance/invalid/.
 # Run after a bitstream change (which also bumps the version in the spec); review the diff of
 # the .md5 files.
@@ -11,12 +12,63 @@ out=conformance/streams
 mkdir -p "$out"
 rm -f "$out"/*.m4d "$out"/*.md5
 
+# record NAME: the expected hashes of conformance/streams/NAME.m4d, every layer choice.
+record() {
+  "$bin/m4d_decode" -q "$out/$1.m4d" -o "$out/$1.md5"
+  "$bin/m4d_decode" -q --layers static "$out/$1.m4d" -o "$out/$1.static.md5"
+  "$bin/m4d_decode" -q --layers dynamic "$out/$1.m4d" -o "$out/$1.dynamic.md5"
+}
+
+# The reference encoder on the built-in scene at 64x48 (6 cameras, 6 frames; an object enters
+# at frame 3), with schedules short enough for seconds per stream. The content is not the
+# point: together the streams reach every syntax element and coding choice of the encoder.
+scene=build/conformance-scene
+rm -rf "$scene"
+"$bin/m4d/m4d" scene -o "$scene" --cameras 6 --width 64 --height 48 --frames 6 --points 2000
+short="--keyframe-iterations 600 --retrain-iterations 60 --motion-iterations 20
+  --compensation-iterations 20 --lookahead 2 --max-gaussians 1500 --threads 1"
+dynamic="--tau-delta 0.05"  # more of this small scene dynamic than the default threshold
+bits24=24,24,24,24,24,24
+bits1=1,1,1,1,1,1
+# name | m4d encode arguments
+encoded=(
+  "enc_adaptive_gop|$dynamic"
+  "enc_sh0_fixed_gop|$dynamic --sh-degree 0 --fixed-gop 3"
+  "enc_sh2_one_gop|$dynamic --sh-degree 2 --fixed-gop 6"
+  "enc_sh3|$dynamic --sh-degree 3 --fixed-gop 3"
+  "enc_no_compensation|$dynamic --no-compensation --fixed-gop 3"
+  "enc_all_static|--tau-delta 1e9 --tau-s 1e9 --tau-e 1e9 --fixed-gop 3"
+  "enc_all_dynamic|--no-decoupling --fixed-gop 3"
+  "enc_no_motion|$dynamic --no-motion --fixed-gop 3"
+  "enc_no_rate_term|$dynamic --no-rate --fixed-gop 3"
+  "enc_rate_point_r1|$dynamic --rate-point r1 --fixed-gop 3"
+  "enc_rate_point_r5|$dynamic --rate-point r5 --fixed-gop 3"
+  "enc_bits_24|$dynamic --keyframe-bits $bits24 --compensation-bits $bits24 --fixed-gop 3"
+  "enc_bits_1|$dynamic --keyframe-bits $bits1 --compensation-bits $bits1 --fixed-gop 3"
+)
+for entry in "${encoded[@]}"; do
+  name=${entry%%|*}
+  args=${entry#*|}
+  echo "== $name"
+  # shellcheck disable=SC2086
+  "$bin/m4d/m4d" encode "$scene" -o "$out/$name.m4d" --views "" $short $args | tail -9
+  rm -f "$out/$name.m4d.json"
+  record "$name"
+done
+# Foreground-only (spec 2): the adaptive-GOP stream without its KEYFRAME_STATIC packets.
+"$bin/m4d_filter" "$out/enc_adaptive_gop.m4d" "$out/enc_foreground_only.m4d"
+record enc_foreground_only
+
+# The synthetic stream writer: random Gaussian sets and sparse motion.
 # name | m4d_synth arguments
 streams=(
   "synth_sh3_three_gops|--gops 3 --frames-per-gop 4 --static 2000 --dynamic 600 --sh-degree 3 --motion-fraction 0.002 --seed 11"
   "synth_sh0_short_gops|--gops 4 --frames-per-gop 2 --static 1500 --dynamic 400 --sh-degree 0 --motion-fraction 0.003 --seed 12"
   "synth_sh1_foreground_only|--gops 2 --frames-per-gop 3 --static 0 --dynamic 800 --sh-degree 1 --motion-fraction 0.002 --seed 13"
   "synth_sh2_single_gop|--gops 1 --frames-per-gop 8 --static 1000 --dynamic 500 --sh-degree 2 --motion-fraction 0.001 --seed 14"
+  "synth_max_grid_values|--gops 1 --frames-per-gop 3 --static 300 --dynamic 200 --sh-degree 3 --grid 256,1 --mlp-layers 4 --mlp-width 32 --bits 24 --motion-fraction 0.0005 --seed 21"
+  "synth_single_gaussian_sets|--gops 2 --frames-per-gop 3 --static 1 --dynamic 100 --sh-degree 1 --motion-fraction 0.01 --seed 23"
+  "synth_max_levels_width|--gops 2 --frames-per-gop 2 --static 300 --dynamic 200 --sh-degree 2 --grid 8,8,16,8,32,8,64,8 --mlp-width 256 --bits 1 --motion-fraction 0.002 --seed 22"
 )
 for entry in "${streams[@]}"; do
   name=${entry%%|*}
@@ -24,9 +76,7 @@ for entry in "${streams[@]}"; do
   echo "== $name"
   # shellcheck disable=SC2086
   "$bin/m4d_synth" -o "$out/$name.m4d" $args | tail -5
-  "$bin/m4d_decode" -q "$out/$name.m4d" -o "$out/$name.md5"
-  "$bin/m4d_decode" -q --layers static "$out/$name.m4d" -o "$out/$name.static.md5"
-  "$bin/m4d_decode" -q --layers dynamic "$out/$name.m4d" -o "$out/$name.dynamic.md5"
+  record "$name"
 done
 (cd "$out" && md5sum ./*.m4d >MANIFEST.md5sum)
 echo "wrote $(ls "$out"/*.m4d | wc -l) streams to $out"

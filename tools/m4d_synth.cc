@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/md5.h"
+#include "common/spec_limits.h"
 #include "decode/frame_hash.h"
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
@@ -26,15 +27,53 @@ struct Options {
   int sh_degree = 3;
   float motion_fraction = 0.05f;
   uint64_t seed = 1;
+  std::vector<int> grid;  // resolution, channels per level (empty: the paper's)
+  int mlp_layers = 1, mlp_width = 64;
+  int bits = 0;  // every Gaussian group's bits (0: the writer's defaults)
 };
+
+// The sequence configuration the options ask for; false (with a message) when out of limits.
+bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
+  wo->sequence.sh_degree = opt.sh_degree;
+  wo->sequence.num_frames = static_cast<uint32_t>(opt.gops * opt.frames_per_gop);
+  if (!opt.grid.empty()) {
+    if (opt.grid.size() % 2 != 0 || opt.grid.size() > 2 * m4d::kMaxGridLevels) {
+      std::fprintf(stderr, "m4d_synth: --grid takes 1 to %d resolution,channels pairs\n",
+                   m4d::kMaxGridLevels);
+      return false;
+    }
+    m4d::GridConfig& g = wo->sequence.grid;
+    g.num_levels = static_cast<int>(opt.grid.size() / 2);
+    for (int l = 0; l < g.num_levels; ++l) {
+      g.resolution[l] = opt.grid[2 * l];
+      g.channels[l] = opt.grid[2 * l + 1];
+      if (g.channels[l] > m4d::kMaxGridChannels) {
+        std::fprintf(stderr, "m4d_synth: at most %d channels per level\n", m4d::kMaxGridChannels);
+        return false;
+      }
+    }
+    if (g.total_values() > m4d::kMaxGridValues) {
+      std::fprintf(stderr, "m4d_synth: the grid has more than %u values\n", m4d::kMaxGridValues);
+      return false;
+    }
+  }
+  wo->sequence.mlp.hidden_layers = opt.mlp_layers;
+  wo->sequence.mlp.hidden_width = opt.mlp_width;
+  if (opt.bits > 0) {
+    m4d::GaussianQuantization q;
+    q.position_bits = q.log_scale_bits = q.rotation_bits = opt.bits;
+    q.opacity_bits = q.sh_dc_bits = q.sh_rest_bits = opt.bits;
+    wo->quantization = wo->compensation_quantization = q;
+  }
+  return true;
+}
 
 // Writes the stream and returns the writer's reconstructed hash for each frame.
 bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
                  std::vector<std::string>* hashes) {
   using namespace m4d;
   StreamWriterOptions wo;
-  wo.sequence.sh_degree = opt.sh_degree;
-  wo.sequence.num_frames = static_cast<uint32_t>(opt.gops * opt.frames_per_gop);
+  if (!StreamOptions(opt, &wo)) return false;
   StreamWriter writer(wo);
   const float center[3] = {0, 0, 0}, fg_center[3] = {0.2f, 0.1f, 0};
   std::printf("%6s %4s %12s %12s %10s %10s %10s\n", "frame", "type", "static B", "dynamic B",
@@ -126,6 +165,17 @@ int main(int argc, char** argv) {
                  "fraction of the motion grid's box covered by motion")
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--seed", opt.seed, "random seed");
+  app.add_option("--grid", opt.grid,
+                 "motion grid levels as resolution,channels pairs (default: the paper's 32,4,64,4,"
+                 "128,2)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 256));
+  app.add_option("--mlp-layers", opt.mlp_layers, "hidden layers of the motion MLP")
+      ->check(CLI::Range(1, 4));
+  app.add_option("--mlp-width", opt.mlp_width, "width of its hidden layers")
+      ->check(CLI::Range(1, 256));
+  app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
+      ->check(CLI::Range(0, 24));
   CLI11_PARSE(app, argc, argv);
 
   std::vector<uint8_t> bytes;

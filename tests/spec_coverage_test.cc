@@ -1,0 +1,267 @@
+// The spec coverage table (bitstream-spec/coverage.md) is checked, not trusted: this test
+// walks the syntax of every conformance stream (spec 4 and 5, independently of the SDK's
+// parser) and records which syntax elements and value ranges it uses. Each row of the table
+// names a feature and the streams that exercise it; every one of those streams must have the
+// feature, and every feature the walk knows must have a row.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "m4d/m4d.h"
+
+namespace {
+
+const std::string kRoot = M4D_SOURCE_DIR;
+
+// Reads the syntax of spec 1 from a payload; a read past the end fails the test.
+class Reader {
+ public:
+  Reader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  uint32_t U8() { return Need(1) ? data_[pos_++] : 0; }
+  uint32_t U16() { return U8() | (U8() << 8); }
+  uint32_t U32() { return U16() | (U16() << 16); }
+  void Skip(size_t n) {
+    if (Need(n)) pos_ += n;
+  }
+  uint32_t VarUint() {
+    uint32_t v = 0;
+    for (int shift = 0; shift < 35; shift += 7) {
+      const uint32_t b = U8();
+      v |= (b & 127u) << shift;
+      if (!(b & 128u)) break;
+    }
+    return v;
+  }
+  int64_t VarSint() {
+    const uint32_t z = VarUint();
+    return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
+  }
+  bool done() const { return pos_ == size_; }
+
+ private:
+  bool Need(size_t n) {
+    EXPECT_LE(pos_ + n, size_) << "read past the payload";
+    return pos_ + n <= size_;
+  }
+  const uint8_t* data_;
+  size_t size_, pos_ = 0;
+};
+
+struct Walk {
+  std::set<std::string> features;
+  int sh_degree = 0;
+  int levels = 0;
+  int mlp_layers = 0;
+  bool static_in_gop = false;
+  int inter_in_gop = 0;
+
+  void Add(const std::string& f) { features.insert(f); }
+
+  // 5.1: returns (alphabet size, min).
+  std::pair<uint32_t, int64_t> SymbolBlock(Reader* r) {
+    const uint32_t n = r->VarUint();
+    const int64_t min = r->VarSint();
+    if (min < 0) Add("min_negative");
+    if (n == 1) {
+      Add("symbols_single");
+      return {n, min};
+    }
+    Add("symbols_multi");
+    if (n >= 256) Add("alphabet>=256");
+    for (uint32_t i = 0; i < n; ++i) {
+      if (r->VarUint() == 0) {
+        Add("frequency_zero_run");
+        i += r->VarUint();
+      }
+    }
+    r->Skip(r->VarUint());
+    return {n, min};
+  }
+
+  // 5.4; set names the packet ("static", "dynamic", "added").
+  void GaussianSet(Reader* r, const std::string& set) {
+    const uint32_t count = r->VarUint();
+    Add(set + "_count" + (count == 0 ? "=0" : ">0"));
+    if (count == 0) return;
+    const int k = (sh_degree + 1) * (sh_degree + 1);
+    const int components[6] = {3, 3, 4, 1, 3, 3 * (k - 1)};
+    for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
+      const uint32_t bits = r->U8(), per_component = r->U8();
+      if (bits == 0) Add("bits=0");
+      if (bits == 1) Add("bits=1");
+      if (bits >= 2 && bits <= 8) Add("bits=2..8");
+      if (bits >= 9 && bits <= 16) Add("bits=9..16");
+      if (bits >= 17) Add("bits=17..24");
+      if (bits == 24) Add("bits=24");
+      Add(per_component ? "per_component=1" : "per_component=0");
+      r->Skip(8u * (per_component ? components[g] : 1));
+    }
+    const uint32_t draco = r->VarUint();
+    r->Skip(draco);
+  }
+
+  void SequenceHeader(Reader* r) {
+    r->Skip(3);
+    sh_degree = static_cast<int>(r->U8());
+    Add("sh_degree=" + std::to_string(sh_degree));
+    r->Skip(12);
+    levels = static_cast<int>(r->U8());
+    Add("grid_levels=" + std::to_string(levels));
+    uint64_t values = 0;
+    std::vector<uint64_t> channels(levels);
+    for (int l = 0; l < levels; ++l) {
+      channels[l] = r->U8();
+      if (channels[l] == 8) Add("grid_channels=8");
+    }
+    for (int l = 0; l < levels; ++l) {
+      const uint64_t res = r->U16();
+      if (res == 256) Add("grid_resolution=256");
+      values += res * res * res * channels[l];
+    }
+    if (values == (1u << 24)) Add("grid_values=2^24");
+    mlp_layers = static_cast<int>(r->U8());
+    Add("mlp_hidden_layers=" + std::to_string(mlp_layers));
+    if (r->U16() == 256) Add("mlp_width=256");
+  }
+
+  void Mlp(Reader* r) {
+    for (int j = 0; j <= mlp_layers; ++j) {
+      r->Skip(4);
+      SymbolBlock(r);
+      r->Skip(4);
+      SymbolBlock(r);
+    }
+  }
+
+  void MotionGrid(Reader* r) {
+    r->Skip(24);
+    bool any = false;
+    for (int l = 0; l < levels; ++l) {
+      r->Skip(4);
+      const auto flags = SymbolBlock(r);
+      if (flags.first > 1) Add("bricks_mixed");
+      if (flags.first == 1 && flags.second == 1) Add("bricks_all_one");
+      any = any || flags.first > 1 || flags.second == 1;
+      SymbolBlock(r);
+    }
+    if (!any) Add("grid_all_zero");
+  }
+
+  void Compensation(Reader* r) {
+    const uint32_t removed = r->VarUint();
+    Add(removed ? "removed>0" : "removed=0");
+    if (removed) SymbolBlock(r);
+    GaussianSet(r, "added");
+  }
+
+  void Packet(const M4dPacketInfo& info, const uint8_t* payload) {
+    Reader r(payload, info.payload_size);
+    switch (info.type) {
+      case M4D_PACKET_SEQUENCE_HEADER:
+        if (features.count("gop_started")) Add("gops>=2");
+        Add("gop_started");
+        static_in_gop = false;
+        inter_in_gop = 0;
+        SequenceHeader(&r);
+        break;
+      case M4D_PACKET_KEYFRAME_STATIC:
+        static_in_gop = true;
+        GaussianSet(&r, "static");
+        break;
+      case M4D_PACKET_KEYFRAME_DYNAMIC:
+        if (!static_in_gop) Add("keyframe_static_absent");
+        GaussianSet(&r, "dynamic");
+        break;
+      case M4D_PACKET_MLP_WEIGHTS:
+        Mlp(&r);
+        break;
+      case M4D_PACKET_MOTION_GRID:
+        if (++inter_in_gop >= 5) Add("inter_frames_in_gop>=5");
+        MotionGrid(&r);
+        break;
+      case M4D_PACKET_COMPENSATION:
+        Compensation(&r);
+        break;
+    }
+    EXPECT_TRUE(r.done()) << "payload of type " << info.type << " not consumed";
+  }
+};
+
+std::set<std::string> StreamFeatures(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  Walk walk;
+  size_t pos = 0;
+  while (pos < data.size()) {
+    M4dPacketInfo info;
+    if (m4d_parse_packet_header(&data[pos], data.size() - pos, &info) != M4D_OK) {
+      ADD_FAILURE() << path << ": bad packet header at " << pos;
+      break;
+    }
+    walk.Packet(info, &data[pos + 24]);
+    pos += info.packet_size;
+  }
+  walk.features.erase("gop_started");
+  return walk.features;
+}
+
+// Rows of coverage.md: feature -> streams.
+std::map<std::string, std::vector<std::string>> CoverageRows() {
+  std::ifstream in(kRoot + "/bitstream-spec/coverage.md");
+  EXPECT_TRUE(in) << "no bitstream-spec/coverage.md";
+  std::map<std::string, std::vector<std::string>> rows;
+  // | section | element | `feature` | `stream`, `stream` |
+  const std::regex row(R"(^\|[^|]*\|[^|]*\| `([^`]+)` \|(.*)\|\s*$)");
+  const std::regex name("`([a-z0-9_]+)`");
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    const std::string streams = m[2].str();
+    std::vector<std::string>& list = rows[m[1].str()];
+    for (std::sregex_iterator it(streams.begin(), streams.end(), name), end; it != end; ++it) {
+      list.push_back((*it)[1].str());
+    }
+  }
+  return rows;
+}
+
+TEST(SpecCoverage, EveryRowHoldsAndEveryFeatureHasARow) {
+  std::map<std::string, std::set<std::string>> features;  // stream -> features
+  std::set<std::string> all;
+  for (const auto& entry : std::filesystem::directory_iterator(kRoot + "/conformance/streams")) {
+    if (entry.path().extension() != ".m4d") continue;
+    const std::string stream = entry.path().stem().string();
+    features[stream] = StreamFeatures(entry.path().string());
+    all.insert(features[stream].begin(), features[stream].end());
+  }
+  const auto rows = CoverageRows();
+  EXPECT_GE(rows.size(), 30u);
+  for (const auto& [feature, streams] : rows) {
+    EXPECT_FALSE(streams.empty()) << feature << ": no stream listed";
+    for (const std::string& s : streams) {
+      ASSERT_TRUE(features.count(s)) << feature << ": no conformance stream " << s;
+      EXPECT_TRUE(features[s].count(feature)) << s << " does not exercise " << feature;
+    }
+  }
+  for (const std::string& f : all) EXPECT_TRUE(rows.count(f)) << "no row for " << f;
+  if (::testing::Test::HasFailure()) {
+    for (const auto& [stream, set] : features) {
+      std::ostringstream line;
+      for (const std::string& f : set) line << f << ' ';
+      std::printf("%s: %s\n", stream.c_str(), line.str().c_str());
+    }
+  }
+}
+
+}  // namespace

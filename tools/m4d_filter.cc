@@ -1,0 +1,54 @@
+// m4d_filter: writes the foreground-only form of a stream (spec 2): every KEYFRAME_STATIC
+// removed, the rest copied. It stays a valid stream, and it is all a player that composites
+// the foreground over its own background needs to receive. Stops with an error at the first
+// packet whose header does not parse.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "m4d/m4d.h"
+
+namespace {}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input, output;
+  CLI::App app{"Write the foreground-only form of a stream (every KEYFRAME_STATIC removed)."};
+  app.add_option("input", input, "stream to read")->required()->check(CLI::ExistingFile);
+  app.add_option("output", output, "foreground-only stream to write")->required();
+  CLI11_PARSE(app, argc, argv);
+
+  std::ifstream in(input, std::ios::binary);
+  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  std::vector<uint8_t> kept;
+  size_t pos = 0, packets = 0, dropped = 0;
+  while (pos < data.size()) {
+    M4dPacketInfo info;
+    const int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
+    if (r != M4D_OK) {
+      std::fprintf(stderr, "m4d_filter: %s: byte %zu: %s\n", input.c_str(), pos,
+                   m4d_error_string(r));
+      return 1;
+    }
+    if (info.type != M4D_PACKET_KEYFRAME_STATIC) {
+      kept.insert(kept.end(), data.begin() + static_cast<std::ptrdiff_t>(pos),
+                  data.begin() + static_cast<std::ptrdiff_t>(pos + info.packet_size));
+    } else {
+      ++dropped;
+    }
+    ++packets;
+    pos += info.packet_size;
+  }
+  std::ofstream out(output, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(kept.data()), static_cast<std::streamsize>(kept.size()));
+  if (!out) {
+    std::fprintf(stderr, "m4d_filter: cannot write %s\n", output.c_str());
+    return 1;
+  }
+  std::printf("%s: %zu of %zu packets kept (%zu bytes)\n", output.c_str(), packets - dropped,
+              packets, kept.size());
+  return 0;
+}
