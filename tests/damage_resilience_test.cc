@@ -116,7 +116,9 @@ TEST(DamageResilience, ThousandRandomDamagesNeverCrashAndResumeAtTheNextGop) {
     }
   }
   EXPECT_GT(reported, 900);
-  EXPECT_GT(resumed_gops, 500);
+  // Coverage guard: several streams are one GOP long, so about a third of the trials damage a
+  // byte before some later GOP.
+  EXPECT_GT(resumed_gops, 300);
 }
 
 }  // namespace
