@@ -60,14 +60,31 @@ TEST(Bjontegaard, GeneralCurvesMatchNumericalIntegration) {
   EXPECT_NEAR(back.psnr_db, -d.psnr_db, 1e-9);
 }
 
+// A test curve much cheaper than the anchor: the PSNR ranges overlap (34 to 40 dB) but the
+// rates do not (20 to 80 against 100 to 1000), so there is a BD-rate and no BD-PSNR. Lines
+// 11 dB apart at 10 dB per decade: equal PSNR at 10^-1.1 of the rate.
+TEST(Bjontegaard, RateWithoutACommonRateRange) {
+  std::vector<RatePoint> anchor, test;
+  for (double r : {100.0, 200.0, 500.0, 1000.0})
+    anchor.push_back({r, 30 + 10 * std::log10(r / 100)});
+  for (double r : {20.0, 40.0, 80.0}) test.push_back({r, 41 + 10 * std::log10(r / 100)});
+  BjontegaardDelta d;
+  ASSERT_TRUE(ComputeBjontegaard(anchor, test, &d).ok());
+  EXPECT_TRUE(d.has_rate);
+  EXPECT_FALSE(d.has_psnr);
+  EXPECT_NEAR(d.rate_percent, (std::pow(10.0, -1.1) - 1) * 100, 1e-9);  // -92.06%
+  ASSERT_TRUE(ComputeBjontegaard(test, anchor, &d).ok());
+  EXPECT_NEAR(d.rate_percent, (std::pow(10.0, 1.1) - 1) * 100, 1e-7);
+}
+
 TEST(Bjontegaard, RejectsUnusableCurves) {
   BjontegaardDelta d;
   EXPECT_EQ(ComputeBjontegaard({{100, 30}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
   EXPECT_EQ(ComputeBjontegaard({{0, 30}, {100, 31}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
   EXPECT_EQ(ComputeBjontegaard({{100, 31}, {200, 30}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
   EXPECT_EQ(ComputeBjontegaard({{100, NAN}, {200, 30}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
-  // No common PSNR range.
-  EXPECT_EQ(ComputeBjontegaard({{100, 40}, {200, 41}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
+  // No common PSNR or rate range.
+  EXPECT_EQ(ComputeBjontegaard({{1000, 40}, {2000, 41}}, kAnchor, &d).code(), M4D_ERR_INVALID_ARG);
 }
 
 }  // namespace

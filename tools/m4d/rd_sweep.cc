@@ -245,23 +245,25 @@ nlohmann::json CompareCurves(const RdCurve& anchor, const RdCurve& test) {
   for (RateScope scope : {RateScope::kAllFrames, RateScope::kInterFrames}) {
     BjontegaardDelta bd;
     const Status s = ComputeBjontegaard(RatePoints(anchor, scope), RatePoints(test, scope), &bd);
-    out[scope == RateScope::kAllFrames ? "all" : "inter"] =
-        s.ok() ? nlohmann::json{{"bd_rate_percent", bd.rate_percent}, {"bd_psnr_db", bd.psnr_db}}
-               : nlohmann::json{{"error", s.message()}};
+    nlohmann::json& cell = out[scope == RateScope::kAllFrames ? "all" : "inter"];
+    cell = nlohmann::json::object();
+    if (!s.ok()) cell["error"] = s.message();
+    if (bd.has_rate) cell["bd_rate_percent"] = bd.rate_percent;
+    if (bd.has_psnr) cell["bd_psnr_db"] = bd.psnr_db;
   }
   return out;
 }
 
 std::string BdCells(const nlohmann::json& compare, const char* scope) {
-  char text[64];
+  char rate[32] = "      n/a", psnr[32] = "     n/a";
   const nlohmann::json& c = compare.at(scope);
-  if (c.contains("error")) {
-    std::snprintf(text, sizeof(text), "%9s %8s", "n/a", "");
-  } else {
-    std::snprintf(text, sizeof(text), "%+8.1f%% %+8.2f", c["bd_rate_percent"].get<double>(),
-                  c["bd_psnr_db"].get<double>());
+  if (c.contains("bd_rate_percent")) {
+    std::snprintf(rate, sizeof(rate), "%+8.1f%%", c["bd_rate_percent"].get<double>());
   }
-  return text;
+  if (c.contains("bd_psnr_db")) {
+    std::snprintf(psnr, sizeof(psnr), "%+8.2f", c["bd_psnr_db"].get<double>());
+  }
+  return std::string(rate) + " " + psnr;
 }
 
 nlohmann::json RdCurveJson(const RdCurve& curve) {

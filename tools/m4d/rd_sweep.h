@@ -68,9 +68,10 @@ enum class RateScope { kAllFrames, kInterFrames };
 std::vector<RatePoint> RatePoints(const RdCurve& curve, RateScope scope);
 
 // Bjontegaard deltas of `test` against `anchor`, over all frames ("all") and over inter frames
-// ("inter"), each {bd_rate_percent, bd_psnr_db} or {error} (too few points, no common range).
+// ("inter"), each with bd_rate_percent when the curves share a PSNR range, bd_psnr_db when
+// they share a rate range, and error when neither can be computed (too few points, no range).
 nlohmann::json CompareCurves(const RdCurve& anchor, const RdCurve& test);
-// One scope of a comparison as table cells: "  -12.3%   +0.45" or "n/a", `width` wide.
+// One scope of a comparison as table cells: "  -12.3%   +0.45", "n/a" for a missing delta.
 std::string BdCells(const nlohmann::json& compare, const char* scope);
 
 // The curve as JSON: per point lambda, stream, rates, PSNRs, time, PSNR per frame.

@@ -84,13 +84,14 @@ Status CheckCurve(std::vector<RatePoint>* curve, const char* name) {
   return Status::Ok();
 }
 
-// Mean over the common x range of test(x) - anchor(x), each curve given as y over x.
-Status MeanDifference(const std::vector<double>& ax, const std::vector<double>& ay,
-                      const std::vector<double>& tx, const std::vector<double>& ty, double* mean) {
+// Mean over the common x range of test(x) - anchor(x), each curve given as y over x; false
+// when the ranges do not overlap.
+bool MeanDifference(const std::vector<double>& ax, const std::vector<double>& ay,
+                    const std::vector<double>& tx, const std::vector<double>& ty, double* mean) {
   const double lo = std::max(ax.front(), tx.front()), hi = std::min(ax.back(), tx.back());
-  if (!(hi > lo)) return Status(M4D_ERR_INVALID_ARG, "Bjontegaard: the curves do not overlap");
+  if (!(hi > lo)) return false;
   *mean = (Pchip(tx, ty).Integral(lo, hi) - Pchip(ax, ay).Integral(lo, hi)) / (hi - lo);
-  return Status::Ok();
+  return true;
 }
 
 }  // namespace
@@ -108,10 +109,14 @@ Status ComputeBjontegaard(std::vector<RatePoint> anchor, std::vector<RatePoint> 
     t_log.push_back(std::log10(p.rate));
     t_psnr.push_back(p.psnr);
   }
+  *delta = BjontegaardDelta();
   double log_rate_difference = 0;
-  M4D_RETURN_IF_ERROR(MeanDifference(a_psnr, a_log, t_psnr, t_log, &log_rate_difference));
-  M4D_RETURN_IF_ERROR(MeanDifference(a_log, a_psnr, t_log, t_psnr, &delta->psnr_db));
-  delta->rate_percent = (std::pow(10.0, log_rate_difference) - 1.0) * 100.0;
+  delta->has_rate = MeanDifference(a_psnr, a_log, t_psnr, t_log, &log_rate_difference);
+  if (delta->has_rate) delta->rate_percent = (std::pow(10.0, log_rate_difference) - 1.0) * 100.0;
+  delta->has_psnr = MeanDifference(a_log, a_psnr, t_log, t_psnr, &delta->psnr_db);
+  if (!delta->has_rate && !delta->has_psnr) {
+    return Status(M4D_ERR_INVALID_ARG, "Bjontegaard: the curves share no rate or PSNR range");
+  }
   return Status::Ok();
 }
 

@@ -21,13 +21,16 @@ struct RatePoint {
 };
 
 struct BjontegaardDelta {
+  bool has_rate = false;    // the curves share a PSNR range
   double rate_percent = 0;  // BD-rate of test against anchor
+  bool has_psnr = false;    // the curves share a rate range
   double psnr_db = 0;       // BD-PSNR of test against anchor
 };
 
 // Each curve needs at least two points with positive, finite rates and finite PSNRs, rate and
-// PSNR both strictly increasing once sorted by rate, and the curves' ranges must overlap.
-// M4D_ERR_INVALID_ARG otherwise.
+// PSNR both strictly increasing once sorted by rate. Each delta needs its common range (a
+// codec much cheaper than the anchor at the same quality has a BD-rate but no BD-PSNR); when
+// neither range is shared, or a curve is unusable, M4D_ERR_INVALID_ARG.
 Status ComputeBjontegaard(std::vector<RatePoint> anchor, std::vector<RatePoint> test,
                           BjontegaardDelta* delta);
 
