@@ -1,19 +1,18 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the decoder with clang (ASan + UBSan), fuzzes the whole
-# decode loop for N seconds (default 60) from a seed corpus of synthetic streams, then each
+# Builds the libFuzzer targets of the decoder with clang (ASan + UBSan, in scripts/sanitize.sh's
+# tree), fuzzes the whole decode loop for N seconds (default 60) from a seed corpus of
+# synthetic and conformance streams, then each
 # other stream target (packet headers, every layer decoder, allocation failure) for
 # M4D_FUZZ_EACH seconds (default 10). Prints executions per target and exits non-zero when a
-# fuzzer finds a crash (the reproducer is left in build/fuzz/).
+# fuzzer finds a crash (the reproducer is left in build/sanitize/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 
-fuzz=build/fuzz
-CC=clang CXX=clang++ cmake -S . -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DM4D_FUZZ=ON -DM4D_BUILD_BENCH=OFF >/dev/null
+fuzz=build/sanitize
 targets=(packet_header_fuzzer gaussian_set_fuzzer mlp_weights_fuzzer motion_grid_fuzzer
   symbol_block_fuzzer inter_frame_fuzzer alloc_failure_fuzzer)
-cmake --build "$fuzz" --target decode_fuzzer m4d_synth "${targets[@]}"
+scripts/sanitize.sh --targets decode_fuzzer m4d_synth "${targets[@]}"
 
 corpus="$fuzz/corpus"
 if [ ! -d "$corpus" ]; then
@@ -27,6 +26,12 @@ if [ ! -d "$corpus" ]; then
       { printf "\\x$(printf %02x $mode)"; cat "$fuzz/seed.m4d"; } >"$corpus/seed_${sh}_$mode"
     done
     seed=$((seed + 1))
+  done
+  # The conformance streams, every layer choice, checksums off (mode 0..2).
+  for stream in conformance/streams/*.m4d; do
+    for mode in 0 1 2; do
+      { printf "\\x0$mode"; cat "$stream"; } >"$corpus/$(basename "$stream" .m4d)_$mode"
+    done
   done
 fi
 cd "$fuzz"

@@ -37,8 +37,10 @@ Status OsmesaContext::Create(std::unique_ptr<OsmesaContext>* context) {
 }
 
 Status OsmesaContext::Initialize() {
+  // RTLD_NODELETE: Mesa keeps process-wide driver state that it never frees; unmapping it at
+  // dlclose would leave that state dangling, and a second context would load it afresh.
   for (const char* name : {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so"}) {
-    library_ = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+    library_ = dlopen(name, RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     if (library_ != nullptr) break;
   }
   if (library_ == nullptr) return Status(M4D_ERR_UNSUPPORTED, "gl: libOSMesa not found");
