@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # Builds everything with clang under AddressSanitizer and UndefinedBehaviorSanitizer
-# (build/sanitize, shared with the fuzz targets of scripts/fuzz.sh) and runs the test suite
-# there, all but two long encoder runs (below). Any report fails the run: UBSan does not
-# recover, leaks are errors except inside Mesa's GL driver and LLVM
-# (scripts/lsan_suppressions.txt), which the GL tests load.
+# (build/sanitize, shared with the fuzz targets of scripts/fuzz.sh) and runs the whole test
+# suite there. Any report fails the run: UBSan does not recover, leaks are errors except
+# inside Mesa's GL driver and LLVM (scripts/lsan_suppressions.txt), which the GL tests load.
 #
 #   scripts/sanitize.sh [--build-only | --targets TARGET...]
 set -euo pipefail
@@ -24,6 +23,4 @@ cmake --build "$dir"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 export LSAN_OPTIONS=suppressions=$PWD/scripts/lsan_suppressions.txt:print_suppressions=0
-# Two end-to-end CLI runs are left to the Release suite: they train scenes of tens of
-# thousands of Gaussians (5 minutes here) through code the encoder unit tests already run.
-ctest --test-dir "$dir" --output-on-failure -j2 -E '^m4d_(encode_max_gaussians|rd_and_ablate_tiny)$'
+ctest --test-dir "$dir" --output-on-failure -j2
