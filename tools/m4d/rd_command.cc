@@ -21,13 +21,22 @@ struct RdArguments {
   std::vector<std::string> baselines = {"static", "dynamic"};
 };
 
+// A per-inter-frame figure, or "-" for a point without inter frames (the static baseline).
+std::string InterCell(const RdPoint& p, double value, int decimals) {
+  if (p.keyframe.size() == p.summary.keyframes) return "-";
+  char cell[32];
+  std::snprintf(cell, sizeof(cell), "%.*f", decimals, value);
+  return cell;
+}
+
 void PrintCurve(const RdCurve& curve) {
   std::printf("\n%s\n%-26s %11s %10s %8s %10s %7s %5s %8s\n", curve.label.c_str(), "rate point",
               "KB/frame", "KB/inter", "PSNR", "inter PSNR", "SSIM", "keys", "s/inter");
   for (const RdPoint& p : curve.points) {
-    std::printf("%-26s %11.2f %10.2f %8.2f %10.2f %7.4f %5zu %8.1f\n", p.name.c_str(),
-                p.summary.kb_per_frame, p.summary.kb_per_inter_frame, p.summary.psnr, p.inter_psnr,
-                p.summary.ssim, p.summary.keyframes, p.summary.seconds_per_inter_frame);
+    std::printf("%-26s %11.2f %10s %8.2f %10s %7.4f %5zu %8s\n", p.name.c_str(),
+                p.summary.kb_per_frame, InterCell(p, p.summary.kb_per_inter_frame, 2).c_str(),
+                p.summary.psnr, InterCell(p, p.inter_psnr, 2).c_str(), p.summary.ssim,
+                p.summary.keyframes, InterCell(p, p.summary.seconds_per_inter_frame, 1).c_str());
   }
 }
 

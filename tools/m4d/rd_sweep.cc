@@ -165,7 +165,8 @@ Status RunSweep(const EncodeArguments& args, const std::vector<double>& lambdas,
             .string();
     RdPoint point;
     M4D_RETURN_IF_ERROR(RunPoint(run, out, &point));
-    point.name = "lambda_2 " + LambdaName(lambdas[i]);
+    // --lambda takes the nearest rate point's other settings: name both.
+    point.name = RatePointForLambda(lambdas[i]).name + " lambda_2 " + LambdaName(lambdas[i]);
     point.lambda = lambdas[i];
     curve->points.push_back(std::move(point));
   }

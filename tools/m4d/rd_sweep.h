@@ -20,7 +20,7 @@ namespace m4d {
 const std::vector<double>& PaperLambdas();
 
 struct RdPoint {
-  std::string name;  // the rate point, e.g. "lambda_2 5e-05"
+  std::string name;  // the rate point, e.g. "r5 lambda_2 5e-05"
   double lambda = 0;
   SequenceSummary summary;
   double inter_psnr = 0;           // mean over inter frames (0 without any)
