@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the decoder with clang (ASan + UBSan, in scripts/sanitize.sh's
-# tree), fuzzes the whole decode loop for N seconds (default 60) from a seed corpus of
-# synthetic and conformance streams, then each
-# other stream target (packet headers, every layer decoder, allocation failure) for
-# M4D_FUZZ_EACH seconds (default 10). Prints executions per target and exits non-zero when a
-# fuzzer finds a crash (the reproducer is left in build/sanitize/).
+# Builds the libFuzzer targets with clang (ASan + UBSan, in scripts/sanitize.sh's tree),
+# fuzzes the whole decode loop for N seconds (default 60) from a seed corpus of synthetic and
+# conformance streams, then each other stream target (packet headers, every layer decoder,
+# allocation failure) for M4D_FUZZ_EACH seconds (default 10), then the encoder's file parsers
+# (PLY, COLMAP, PNG/JPEG, NPY/NPZ) for M4D_FUZZ_FILES seconds (default 5). Prints executions
+# per target and exits non-zero when a fuzzer finds a crash (the reproducer is left in
+# build/sanitize/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -12,7 +13,9 @@ seconds=${1:-60}
 fuzz=build/sanitize
 targets=(packet_header_fuzzer gaussian_set_fuzzer mlp_weights_fuzzer motion_grid_fuzzer
   symbol_block_fuzzer inter_frame_fuzzer alloc_failure_fuzzer)
-scripts/sanitize.sh --targets decode_fuzzer m4d_synth "${targets[@]}"
+# The encoder's input parsers: capture files come from anywhere too.
+file_targets=(ply_fuzzer colmap_fuzzer image_decode_fuzzer npy_fuzzer npz_fuzzer)
+scripts/sanitize.sh --targets decode_fuzzer m4d_synth "${targets[@]}" "${file_targets[@]}"
 
 corpus="$fuzz/corpus"
 if [ ! -d "$corpus" ]; then
@@ -53,4 +56,5 @@ run() {
 run decode_fuzzer "$seconds" corpus
 run packet_header_fuzzer "${M4D_FUZZ_EACH:-10}" ../../conformance/streams
 for target in "${targets[@]:1}"; do run "$target" "${M4D_FUZZ_EACH:-10}"; done
+for target in "${file_targets[@]}"; do run "$target" "${M4D_FUZZ_FILES:-5}"; done
 echo "fuzz: no finding"
