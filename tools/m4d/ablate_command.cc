@@ -1,5 +1,6 @@
 #include "ablate_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +19,8 @@ struct AblateArguments {
   EncodeArguments encode;
   SweepOutput out{"out/ablate", false};
   std::vector<double> lambdas = PaperLambdas();
-  int fixed_gop = 50;  // the paper's fixed GOP length
+  int fixed_gop = 50;             // the paper's fixed GOP length
+  std::vector<std::string> only;  // ablations to run; empty: all of them
 };
 
 struct Ablation {
@@ -66,7 +68,12 @@ Status RunAblate(AblateArguments args) {
   if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.out.dir);
   M4D_RETURN_IF_ERROR(PrepareSharedKeyframe(args.out, &args.encode));
   std::vector<RdCurve> curves;
-  for (const Ablation& a : Ablations(args.fixed_gop)) {
+  const std::vector<Ablation> ablations = Ablations(args.fixed_gop);
+  for (const Ablation& a : ablations) {
+    // The full method is the anchor of every comparison, so it always runs.
+    const bool wanted = &a == &ablations[0] || args.only.empty() ||
+                        std::find(args.only.begin(), args.only.end(), a.name) != args.only.end();
+    if (!wanted) continue;
     EncodeArguments run = args.encode;
     a.apply(&run.encoder);
     curves.emplace_back();
@@ -122,6 +129,13 @@ void AddAblateCommand(CLI::App* app, int* exit_code) {
                   "(default: the paper's, r1..r5)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
+  std::vector<std::string> names;  // every ablation but the full method, the anchor
+  for (const Ablation& a : Ablations(args->fixed_gop)) names.emplace_back(a.name);
+  names.erase(names.begin());
+  cmd->add_option("--ablations", args->only,
+                  "only these ablations beside the full method (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(names));
   cmd->add_option("--fixed-gop-length", args->fixed_gop, "GOP length of the fixed-GOP ablation")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
