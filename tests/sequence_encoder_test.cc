@@ -213,6 +213,38 @@ TEST(SequenceEncoderTest, ContentAppearingAwayFromMotionStartsAGop) {
   EXPECT_GT(guarded.frames[3].training_psnr, unguarded.frames[3].training_psnr + 2.0);
 }
 
+// Compensation is a mode decision: coded only where it raises the training views' PSNR by
+// compensation_min_gain. Always coded, it adds Gaussians; never coded, nothing is added or
+// removed, its measured gain is still reported, and the closed loop holds either way.
+TEST(SequenceEncoderTest, CompensationIsCodedOnlyWhereItGains) {
+  Capture capture = MakeCapture();
+  auto encode = [&](double min_gain, SequenceReport* report) {
+    EncoderOptions o = SmallOptions();
+    o.gop.adaptive = false;  // the same frames are inter frames in both runs
+    o.compensation_min_gain = min_gain;
+    SequenceEncoder encoder(capture, o);
+    ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), report).ok());
+    ASSERT_EQ(report->frames.size(), static_cast<size_t>(kFrames));
+    const std::vector<std::string> decoded = DecodedHashes(encoder.stream());
+    ASSERT_EQ(decoded.size(), static_cast<size_t>(kFrames));
+    for (int f = 0; f < kFrames; ++f) EXPECT_EQ(report->frames[f].hash, decoded[f]) << f;
+  };
+  SequenceReport always, never;
+  encode(-1e9, &always);
+  encode(1e9, &never);
+  size_t added = 0;
+  for (int f = 1; f < kFrames; ++f) {
+    added += always.frames[f].added;
+    EXPECT_EQ(never.frames[f].added, 0u) << f;
+    EXPECT_EQ(never.frames[f].removed, 0u) << f;
+  }
+  EXPECT_GT(added, 0u);
+  // The first inter frame starts from the same keyframe: its gain was measured, not coded.
+  EXPECT_NE(never.frames[1].compensation_gain, 0.0);
+  EXPECT_NEAR(never.frames[1].training_psnr,
+              always.frames[1].training_psnr - always.frames[1].compensation_gain, 0.3);
+}
+
 // The per-frame baseline: every frame a static keyframe from its own training (here from the
 // caller's source, as `m4d rd` shares one training per frame between rate points).
 TEST(SequenceEncoderTest, IndependentFramesAreStaticKeyframesFromTheSource) {
@@ -257,6 +289,10 @@ TEST(SequenceEncoderTest, RejectsBadOptions) {
   o.first_frame = kFrames;
   SequenceEncoder late(capture, o);
   EXPECT_EQ(late.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_INVALID_ARG);
+  o = SmallOptions();
+  o.compensation_min_gain = std::nan("");
+  SequenceEncoder no_gain(capture, o);
+  EXPECT_EQ(no_gain.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_INVALID_ARG);
 }
 
 }  // namespace

@@ -36,6 +36,9 @@ struct FrameReport {
   double ratio = 0;  // r_t of the adaptive GOP (inter frames)
   // Mean PSNR over the training views of the coded frame (dB), what the adaptive GOP watches.
   double training_psnr = 0;
+  // Training views' PSNR with the trained compensation minus without it (dB; inter frames
+  // with compensation candidates). Below EncoderOptions::compensation_min_gain, none is coded.
+  double compensation_gain = 0;
   double psnr = 0;  // held-out camera, decoded frame (dB); 0 without a test camera
   double ssim = 0;
   std::string hash;  // frame hash (bitstream-spec 7) of the encoder's reconstruction

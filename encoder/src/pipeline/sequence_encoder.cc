@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include "common/byte_reader.h"
@@ -153,6 +154,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
     return bad("GOP lengths");
   }
   if (!(o.gop.threshold >= 0.0f)) return bad("GOP threshold");
+  if (!std::isfinite(o.compensation_min_gain)) return bad("compensation minimum gain");
   for (int l = 0; l < o.grid.num_levels; ++l) {
     if (!(o.grid_steps[l] > 0.0f)) return bad("grid steps must be positive");
   }
@@ -384,19 +386,13 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     M4D_RETURN_IF_ERROR(
         TrainCompensation(views, gop.static_set, moved, candidates, o, &compensation));
   }
+  M4D_RETURN_IF_ERROR(DecideCompensation(views, gop.static_set, moved, &compensation, &report));
   report.seconds.compensation = Since(start);
   report.added = compensation.added.size();
   for (uint8_t r : compensation.removed) report.removed += r;
   report.ratio = gop.dynamic_set.size() > 0 ? static_cast<double>(report.added) /
                                                   static_cast<double>(gop.dynamic_set.size())
                                             : 0.0;
-  {
-    GaussianSet coded;  // the frame as coded, before the compensation's quantization
-    coded.sh_degree = moved.sh_degree;
-    AppendKept(moved, &compensation.removed, &coded);
-    AppendKept(compensation.added, nullptr, &coded);
-    M4D_RETURN_IF_ERROR(TrainingPsnr(views, gop.static_set, coded, &report.training_psnr));
-  }
   const double drop = gop.keyframe_report.training_psnr - report.training_psnr;
   if (options_.gop.adaptive && length >= options_.gop.min_length &&
       (report.ratio > options_.gop.threshold ||
@@ -459,6 +455,28 @@ RenderSettings SequenceEncoder::Settings() const {
   settings.sh_degree = options_.sh_degree;
   std::copy(options_.background, options_.background + 3, settings.background);
   return settings;
+}
+
+Status SequenceEncoder::DecideCompensation(const TrainingViews& views,
+                                           const GaussianSet& static_set, const GaussianSet& moved,
+                                           CompensationResult* compensation, FrameReport* report) {
+  GaussianSet coded;  // the frame with its compensation, before the compensation's quantization
+  coded.sh_degree = moved.sh_degree;
+  AppendKept(moved, &compensation->removed, &coded);
+  AppendKept(compensation->added, nullptr, &coded);
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, coded, &report->training_psnr));
+  if (compensation->added.size() == 0 &&
+      std::count(compensation->removed.begin(), compensation->removed.end(), 1) == 0) {
+    return Status::Ok();
+  }
+  double without = 0;
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, moved, &without));
+  report->compensation_gain = report->training_psnr - without;
+  if (report->compensation_gain >= options_.compensation_min_gain) return Status::Ok();
+  compensation->removed.assign(moved.size(), 0);
+  M4D_RETURN_IF_ERROR(EmptySet(options_.sh_degree, &compensation->added));
+  report->training_psnr = without;
+  return Status::Ok();
 }
 
 Status SequenceEncoder::TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,

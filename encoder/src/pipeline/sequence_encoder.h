@@ -78,6 +78,11 @@ class SequenceEncoder {
   Status Restart(int frame);
   Status Evaluate(int frame, const GaussianSet& static_set, const GaussianSet& dynamic_set,
                   FrameReport* report);
+  // Sets report's training PSNR and compensation gain; drops the compensation (nothing added
+  // or removed) when it gains less than options_.compensation_min_gain.
+  Status DecideCompensation(const TrainingViews& views, const GaussianSet& static_set,
+                            const GaussianSet& moved, CompensationResult* compensation,
+                            FrameReport* report);
   // Mean PSNR of both sets over the views (the adaptive GOP's quality measure).
   Status TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,
                       const GaussianSet& dynamic_set, double* psnr);
