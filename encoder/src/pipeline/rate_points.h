@@ -1,11 +1,12 @@
 // Rate points: the encoder settings that trade bytes for quality, r1 (fewest bytes) to r5.
-// The paper sweeps the motion grid's rate weight lambda_2 alone. Here the grid is a few
-// hundred bytes of an inter frame and the compensated Gaussians are most of the rest, and a
-// coarser grid (larger lambda_2) leaves more for compensation to add: alone, a larger lambda_2
-// spends more bytes. So each rate point pairs the paper's lambda_2 with the replication
-// threshold tau_g of compensation (how many Gaussians it adds: lambda_3 prunes few of them in
-// compensation's 60 steps, see compensation_training.h) and bit depths for the compensated
-// Gaussians and the keyframes.
+// The paper sweeps the motion grid's rate weight lambda_2 alone. With compensation coded on
+// every frame the grid is a few hundred bytes of an inter frame and the compensated Gaussians
+// are most of the rest, and a coarser grid (larger lambda_2) leaves more for compensation to
+// add: alone, a larger lambda_2 spends more bytes (the encoder now codes compensation only
+// where it pays, EncoderOptions::compensation_min_gain). So each rate point pairs the paper's
+// lambda_2 with the replication threshold tau_g of compensation (how many Gaussians it adds:
+// lambda_3 prunes few of them in compensation's 60 steps, see compensation_training.h) and
+// bit depths for the compensated Gaussians and the keyframes.
 #ifndef M4D_ENCODER_PIPELINE_RATE_POINTS_H_
 #define M4D_ENCODER_PIPELINE_RATE_POINTS_H_
 
