@@ -6,7 +6,16 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "synthetic_scene/scene_random.h"
+
 namespace m4d {
+
+float LightFlickerGain(const SyntheticSceneOptions& options, int frame) {
+  const float flicker = options.realism.light_flicker;
+  if (flicker == 0.0f) return 1.0f;
+  SceneRandom random(MixBits(options.seed * 6151ull + 3) + static_cast<uint64_t>(frame));
+  return 1.0f + flicker * random.Uniform(-1.0f, 1.0f);
+}
 
 SceneLighting LightingAtFrame(const SyntheticSceneOptions& options, int frame) {
   SceneLighting l;
@@ -17,6 +26,10 @@ SceneLighting LightingAtFrame(const SyntheticSceneOptions& options, int frame) {
   const bool changed =
       options.background_change_frame >= 0 && frame >= options.background_change_frame;
   l.lamp_colour = changed ? glm::vec3(0.45f, 0.75f, 1.6f) : glm::vec3(1.3f, 0.95f, 0.55f);
+  const float flicker = LightFlickerGain(options, frame);
+  l.ambient *= flicker;
+  l.sun_colour *= flicker;
+  l.lamp_colour *= flicker;
   return l;
 }
 

@@ -18,7 +18,12 @@ struct SceneLighting {
   glm::vec3 lamp_colour;  // at 1 m, falling off as 1 / (1 + d^2); also the shade's glow
 };
 
-// Warm lamp light until options.background_change_frame, cold and brighter from it on.
+// The factor all lights' strength takes at `frame`: 1 + light_flicker * u, u uniform in
+// [-1, 1] drawn per frame; exactly 1 when flicker is off.
+float LightFlickerGain(const SyntheticSceneOptions& options, int frame);
+
+// Warm lamp light until options.background_change_frame, cold and brighter from it on; every
+// light scaled by LightFlickerGain.
 SceneLighting LightingAtFrame(const SyntheticSceneOptions& options, int frame);
 
 // albedo * ((1 - emissive) * (ambient + sun + lamp) + emissive * lamp_colour), clamped to
