@@ -15,6 +15,8 @@ constexpr float kArcRadius = 3.4f;
 constexpr float kArcSpan = 0.62f;    // radians between the outermost columns
 constexpr float kLowestRow = 0.95f;  // camera heights, metres
 constexpr float kRowSpacing = 0.25f;
+// A sparse rig's single arc stays this far inside the side walls (x = +-2.5).
+constexpr float kSparseRigHalfWidth = 2.3f;
 
 struct Slot {
   float column;  // arc angle fraction in [-0.5, 0.5]
@@ -34,6 +36,15 @@ std::vector<Slot> RigSlots(int count, int* rows) {
       const float column = columns > 1 ? (c + offset) / (columns - 1) - 0.5f : 0.0f;
       slots.push_back({column, r});
     }
+  }
+  return slots;
+}
+
+// The sparse rig: one row across the whole arc, at the middle row's height.
+std::vector<Slot> SparseRigSlots(int count) {
+  std::vector<Slot> slots;
+  for (int c = 0; c < count; ++c) {
+    slots.push_back({count > 1 ? static_cast<float>(c) / (count - 1) - 0.5f : 0.0f, 1});
   }
   return slots;
 }
@@ -62,10 +73,17 @@ Camera LookingAt(const glm::vec3& centre, const SyntheticSceneOptions& options) 
 }  // namespace
 
 std::vector<Camera> MakeCameraRig(const SyntheticSceneOptions& options) {
+  const CaptureRealism& realism = options.realism;
   int rows = 1;
-  std::vector<Slot> slots = RigSlots(options.cameras, &rows);
+  std::vector<Slot> slots =
+      realism.sparse_rig ? SparseRigSlots(options.cameras) : RigSlots(options.cameras, &rows);
+  float span = kArcSpan, radius = kArcRadius;
+  if (realism.sparse_rig) {
+    span = realism.sparse_rig_arc_degrees * 3.14159265f / 180.0f;
+    radius = std::min(kArcRadius, kSparseRigHalfWidth / std::sin(0.5f * span));
+  }
   // The slot nearest the rig's centre becomes camera 0; the others keep their order.
-  const float mid_row = 0.5f * (rows - 1);
+  const float mid_row = realism.sparse_rig ? 1.0f : 0.5f * (rows - 1);
   const auto distance = [mid_row](const Slot& s) {
     return std::fabs(s.column) * 4 + std::fabs(s.row - mid_row);
   };
@@ -75,10 +93,9 @@ std::vector<Camera> MakeCameraRig(const SyntheticSceneOptions& options) {
   std::rotate(slots.begin(), centre, centre + 1);
   std::vector<Camera> cameras;
   for (const Slot& s : slots) {
-    const float angle = kArcSpan * s.column;
-    const glm::vec3 position(kTarget.x + kArcRadius * std::sin(angle),
-                             kLowestRow + kRowSpacing * s.row,
-                             kTarget.z + kArcRadius * std::cos(angle));
+    const float angle = span * s.column;
+    const glm::vec3 position(kTarget.x + radius * std::sin(angle), kLowestRow + kRowSpacing * s.row,
+                             kTarget.z + radius * std::cos(angle));
     cameras.push_back(LookingAt(position, options));
   }
   return cameras;

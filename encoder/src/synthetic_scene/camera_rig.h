@@ -1,7 +1,9 @@
 // The synthetic scene's camera rig, front-facing like N3DV's: cameras on rows of a
 // horizontal arc in front of the room, all aimed at one point inside it. Camera 0, the
 // held-out test camera by N3DV's convention, is the one nearest the rig's centre, so views
-// interpolated from its neighbours can reach it.
+// interpolated from its neighbours can reach it. With CaptureRealism::sparse_rig the cameras
+// stand on one wide arc instead, at head height, and camera 0 is again the one nearest its
+// middle.
 #ifndef M4D_ENCODER_SYNTHETIC_SCENE_CAMERA_RIG_H_
 #define M4D_ENCODER_SYNTHETIC_SCENE_CAMERA_RIG_H_
 
