@@ -13,6 +13,7 @@
 #include "dataset/transforms_json_writer.h"
 #include "image/byte_samples.h"
 #include "image/file_bytes.h"
+#include "image/jpeg_io.h"
 #include "image/png_io.h"
 #include "ply/point_cloud_ply.h"
 #include "synthetic_scene/synthetic_scene.h"
@@ -33,13 +34,17 @@ Status MakeDirectories(const std::string& path) {
   return Status::Ok();
 }
 
-// Writes one frame's views (RGB bytes, one per camera) as PNGs.
-Status WriteFramePngs(const std::string& root, const std::vector<std::string>& names, int frame,
-                      int width, int height, const std::vector<std::vector<uint8_t>>& views) {
+// Writes one frame's views (RGB bytes, one per camera) as PNGs, or JPEGs at jpeg_quality
+// when it is above 0.
+Status WriteFrameImages(const std::string& root, const std::vector<std::string>& names, int frame,
+                        int width, int height, int jpeg_quality,
+                        const std::vector<std::vector<uint8_t>>& views) {
   Image image(width, height, 3);
   for (size_t c = 0; c < views.size(); ++c) {
     for (size_t i = 0; i < views[c].size(); ++i) image.pixels[i] = ByteToFloat(views[c][i]);
-    M4D_RETURN_IF_ERROR(WritePng(root + "/" + SyntheticImagePath(names[c], frame), image));
+    const std::string path = root + "/" + SyntheticImagePath(names[c], frame, jpeg_quality > 0);
+    M4D_RETURN_IF_ERROR(jpeg_quality > 0 ? WriteJpeg(path, image, jpeg_quality)
+                                         : WritePng(path, image));
   }
   return Status::Ok();
 }
@@ -88,9 +93,9 @@ Status WriteText(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::string SyntheticImagePath(const std::string& camera_name, int frame) {
+std::string SyntheticImagePath(const std::string& camera_name, int frame, bool jpeg) {
   char name[32];
-  std::snprintf(name, sizeof(name), "%06d.png", frame);
+  std::snprintf(name, sizeof(name), "%06d.%s", frame, jpeg ? "jpg" : "png");
   return "images/" + camera_name + "/" + name;
 }
 
@@ -103,7 +108,7 @@ Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::stri
   for (const std::string& name : names) {
     M4D_RETURN_IF_ERROR(MakeDirectories(root + "/images/" + name));
   }
-  // PNG compression of one frame runs on a second thread while GL renders the next; two
+  // Image compression of one frame runs on a second thread while GL renders the next; two
   // sets of view buffers alternate between the two.
   std::vector<std::vector<uint8_t>> views[2];
   views[0].resize(options.cameras);
@@ -115,8 +120,9 @@ Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::stri
       M4D_RETURN_IF_ERROR(scene->RenderView(f, c, &frame_views[c]));
     }
     if (writing.valid()) M4D_RETURN_IF_ERROR(writing.get());
-    writing = std::async(std::launch::async, WriteFramePngs, root, std::cref(names), f,
-                         options.width, options.height, std::cref(frame_views));
+    writing =
+        std::async(std::launch::async, WriteFrameImages, root, std::cref(names), f, options.width,
+                   options.height, options.realism.jpeg_quality, std::cref(frame_views));
     if (progress) progress(f + 1, options.frames);
   }
   M4D_RETURN_IF_ERROR(writing.get());
@@ -125,8 +131,9 @@ Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::stri
   rig.cameras = scene->cameras();
   rig.camera_names = names;
   rig.frame_count = options.frames;
-  rig.image_path = [&names](int frame, int camera) {
-    return SyntheticImagePath(names[camera], frame);
+  const bool jpeg = options.realism.jpeg_quality > 0;
+  rig.image_path = [&names, jpeg](int frame, int camera) {
+    return SyntheticImagePath(names[camera], frame, jpeg);
   };
   rig.ply_file_path = kPlyName;
   M4D_RETURN_IF_ERROR(WriteTransformsJson(root + "/transforms.json", rig));

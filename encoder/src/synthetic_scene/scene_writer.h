@@ -1,6 +1,6 @@
 // Writing the synthetic scene to a directory in the transforms.json layout (README.md here):
-// images/<camera>/<frame>.png for every view, transforms.json, points3d.ply and scene.json
-// (what happens when).
+// images/<camera>/<frame>.png (.jpg with CaptureRealism::jpeg_quality) for every view,
+// transforms.json, points3d.ply and scene.json (what happens when).
 #ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_WRITER_H_
 #define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_WRITER_H_
 
@@ -20,8 +20,8 @@ using SceneProgress = std::function<void(int frames_done, int frame_count)>;
 Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::string& dir,
                            const SceneProgress& progress = nullptr);
 
-// Relative path of a view's image: "images/cam03/000012.png".
-std::string SyntheticImagePath(const std::string& camera_name, int frame);
+// Relative path of a view's image: "images/cam03/000012.png", or ".jpg" when `jpeg`.
+std::string SyntheticImagePath(const std::string& camera_name, int frame, bool jpeg = false);
 
 }  // namespace m4d
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "image/byte_samples.h"
+#include "image/jpeg_io.h"
 #include "synthetic_scene/synthetic_scene.h"
 
 namespace m4d {
@@ -32,6 +33,17 @@ class MemoryFrameSource : public FrameSource {
   std::vector<std::vector<uint8_t>> views_;  // frame-major
 };
 
+// What the writer's JPEG file would decode to: the same encoder, the same bytes.
+Status JpegRoundTrip(int width, int height, int quality, std::vector<uint8_t>* rgb) {
+  Image image(width, height, 3);
+  for (size_t i = 0; i < rgb->size(); ++i) image.pixels[i] = ByteToFloat((*rgb)[i]);
+  std::vector<uint8_t> jpeg;
+  M4D_RETURN_IF_ERROR(EncodeJpeg(image, quality, &jpeg));
+  M4D_RETURN_IF_ERROR(DecodeJpeg(jpeg.data(), jpeg.size(), &image));
+  for (size_t i = 0; i < rgb->size(); ++i) (*rgb)[i] = FloatToByte(image.pixels[i]);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* capture,
@@ -46,10 +58,13 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
   std::unique_ptr<SyntheticScene> scene;
   M4D_RETURN_IF_ERROR(SyntheticScene::Create(options, &scene));
   std::vector<std::vector<uint8_t>> views(static_cast<size_t>(options.frames) * options.cameras);
+  const int quality = options.realism.jpeg_quality;
   for (int f = 0; f < options.frames; ++f) {
     for (int c = 0; c < options.cameras; ++c) {
-      M4D_RETURN_IF_ERROR(
-          scene->RenderView(f, c, &views[static_cast<size_t>(f) * options.cameras + c]));
+      std::vector<uint8_t>& view = views[static_cast<size_t>(f) * options.cameras + c];
+      M4D_RETURN_IF_ERROR(scene->RenderView(f, c, &view));
+      if (quality > 0)
+        M4D_RETURN_IF_ERROR(JpegRoundTrip(options.width, options.height, quality, &view));
     }
     if (progress) progress(f + 1, options.frames);
   }

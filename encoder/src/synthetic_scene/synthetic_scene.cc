@@ -3,6 +3,7 @@
 #include "synthetic_scene/camera_rig.h"
 #include "synthetic_scene/scene_animation.h"
 #include "synthetic_scene/scene_random.h"
+#include "synthetic_scene/sensor_effects.h"
 #include "synthetic_scene/surface_point_sampler.h"
 
 namespace m4d {
@@ -28,7 +29,12 @@ Status SyntheticScene::RenderView(int frame, int camera, std::vector<uint8_t>* r
     return Status(M4D_ERR_INVALID_ARG, "synthetic scene: view (frame " + std::to_string(frame) +
                                            ", camera " + std::to_string(camera) + ") out of range");
   }
-  return renderer_->Render(SceneStateAt(content_, options_, frame), cameras_[camera], rgb);
+  const SceneFrameState state = SceneStateAt(content_, options_, frame);
+  if (!HasSensorEffects(options_.realism)) return renderer_->Render(state, cameras_[camera], rgb);
+  M4D_RETURN_IF_ERROR(renderer_->Render(state, cameras_[camera], &pinhole_));
+  levels_.assign(pinhole_.begin(), pinhole_.end());
+  ApplySensorEffects(options_, frame, camera, levels_, rgb);
+  return Status::Ok();
 }
 
 PointCloud SyntheticScene::InitialPoints() const {

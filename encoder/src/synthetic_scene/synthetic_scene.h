@@ -1,8 +1,8 @@
 // SyntheticScene: the project's built-in multi-view dynamic scene, ready to render: a
 // textured room with furniture, a walking and waving figure, a spinning cube, a ball that
 // appears mid-sequence and a lamp that may change colour, seen by a front-facing rig (see
-// README.md in this directory). Rendering uses a headless OpenGL ES context on the thread
-// that created the scene.
+// README.md in this directory), optionally with the flaws of a real capture (CaptureRealism).
+// Rendering uses a headless OpenGL ES context on the thread that created the scene.
 #ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
 #define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
 
@@ -34,7 +34,8 @@ class SyntheticScene {
   const SceneContent& content() const { return content_; }
   const std::string& renderer_description() const { return renderer_->description(); }
 
-  // Renders view (frame, camera): width * height * 3 bytes of RGB, row 0 at the top. Same
+  // Renders view (frame, camera): width * height * 3 bytes of RGB, row 0 at the top, with
+  // the sensor's gains and noise (not JPEG, which the writer and the capture apply). Same
   // options, same bytes.
   Status RenderView(int frame, int camera, std::vector<uint8_t>* rgb);
 
@@ -49,6 +50,8 @@ class SyntheticScene {
   std::vector<std::string> camera_names_;
   SceneContent content_;
   std::unique_ptr<SceneRenderer> renderer_;
+  std::vector<uint8_t> pinhole_;  // a view as rendered, before the sensor
+  std::vector<float> levels_;
 };
 
 }  // namespace m4d
