@@ -24,15 +24,16 @@ double ShortestDecimal(float value) {
 }
 
 // Camera-to-world in OpenGL axes (x right, y up, z backward): the OpenCV camera's axes are
-// the rows of R; y and z flip.
-Json CameraToWorld(const Camera& camera) {
+// the rows of R; y and z flip. Mirroring the world negates the first row.
+Json CameraToWorld(const Camera& camera, bool mirror_world_x) {
   float centre[3];
   CameraCentre(camera, centre);
   const float* r = camera.rotation;
   Json m = Json::array();
   for (int i = 0; i < 3; ++i) {
-    m.push_back({ShortestDecimal(r[i]), ShortestDecimal(-r[3 + i]), ShortestDecimal(-r[6 + i]),
-                 ShortestDecimal(centre[i])});
+    const float s = i == 0 && mirror_world_x ? -1.0f : 1.0f;
+    m.push_back({ShortestDecimal(s * r[i]), ShortestDecimal(-s * r[3 + i]),
+                 ShortestDecimal(-s * r[6 + i]), ShortestDecimal(s * centre[i])});
   }
   m.push_back({0, 0, 0, 1});
   return m;
@@ -70,7 +71,7 @@ Status TransformsJsonText(const TransformsJsonRig& rig, std::string* text) {
     for (size_t c = 0; c < rig.cameras.size(); ++c) {
       Json entry;
       entry["file_path"] = rig.image_path(f, static_cast<int>(c));
-      entry["transform_matrix"] = CameraToWorld(rig.cameras[c]);
+      entry["transform_matrix"] = CameraToWorld(rig.cameras[c], rig.mirror_world_x);
       entry["camera"] = rig.camera_names[c];
       entry["time_index"] = f;
       entry["time"] = f / last;

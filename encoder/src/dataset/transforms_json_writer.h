@@ -20,6 +20,9 @@ struct TransformsJsonRig {
   // The image of (frame, camera), relative to the transforms.json directory.
   std::function<std::string(int frame, int camera)> image_path;
   std::string ply_file_path;  // empty: no "ply_file_path"
+  // Writes the world mirrored through x = 0 (x negated in every transform_matrix: rotations
+  // of determinant -1), as some calibration tools' left-handed output is.
+  bool mirror_world_x = false;
 };
 
 // The JSON text: shared intrinsics from camera 0 (entries whose camera differs carry their

@@ -136,6 +136,7 @@ Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::stri
     return SyntheticImagePath(names[camera], frame, jpeg);
   };
   rig.ply_file_path = kPlyName;
+  rig.mirror_world_x = options.realism.left_handed;
   M4D_RETURN_IF_ERROR(WriteTransformsJson(root + "/transforms.json", rig));
   return WriteText(root + "/scene.json", SceneJsonText(*scene));
 }

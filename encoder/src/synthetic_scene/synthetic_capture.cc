@@ -72,7 +72,7 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
   result.layout = "synthetic";
   result.frame_count = options.frames;
   result.camera_names = scene->camera_names();
-  result.cameras.assign(options.frames, scene->cameras());
+  result.cameras.assign(options.frames, scene->CalibrationCameras());
   result.test_camera = options.cameras > 1 ? 0 : -1;
   result.initial_points = scene->InitialPoints();
   result.frames = std::make_unique<MemoryFrameSource>(options.width, options.height,

@@ -5,6 +5,7 @@
 #include "synthetic_scene/scene_random.h"
 #include "synthetic_scene/sensor_effects.h"
 #include "synthetic_scene/surface_point_sampler.h"
+#include "synthetic_scene/world_mirror.h"
 
 namespace m4d {
 
@@ -37,9 +38,18 @@ Status SyntheticScene::RenderView(int frame, int camera, std::vector<uint8_t>* r
   return Status::Ok();
 }
 
+std::vector<Camera> SyntheticScene::CalibrationCameras() const {
+  if (!options_.realism.left_handed) return cameras_;
+  std::vector<Camera> mirrored;
+  for (const Camera& camera : cameras_) mirrored.push_back(MirrorWorldX(camera));
+  return mirrored;
+}
+
 PointCloud SyntheticScene::InitialPoints() const {
-  return SampleSurfacePoints(content_, SceneStateAt(content_, options_, 0), options_.points,
-                             MixBits(options_.seed * 7919 + 11));
+  PointCloud points = SampleSurfacePoints(content_, SceneStateAt(content_, options_, 0),
+                                          options_.points, MixBits(options_.seed * 7919 + 11));
+  if (options_.realism.left_handed) MirrorWorldX(&points);
+  return points;
 }
 
 }  // namespace m4d

@@ -29,7 +29,10 @@ class SyntheticScene {
 
   // The options with the emergent frame resolved.
   const SyntheticSceneOptions& options() const { return options_; }
+  // The rig in the scene's own (right-handed) world, as it renders.
   const std::vector<Camera>& cameras() const { return cameras_; }
+  // The rig as the capture's calibration gives it: cameras(), mirrored when left-handed.
+  std::vector<Camera> CalibrationCameras() const;
   const std::vector<std::string>& camera_names() const { return camera_names_; }
   const SceneContent& content() const { return content_; }
   const std::string& renderer_description() const { return renderer_->description(); }
@@ -39,7 +42,8 @@ class SyntheticScene {
   // options, same bytes.
   Status RenderView(int frame, int camera, std::vector<uint8_t>* rgb);
 
-  // options.points points on the surfaces present at frame 0, where they are then.
+  // options.points points on the surfaces present at frame 0, where they are then, in the
+  // calibration's world (mirrored when left-handed).
   PointCloud InitialPoints() const;
 
  private:
