@@ -244,4 +244,14 @@ SceneTexture LampShadeTexture(uint64_t seed) {
   });
 }
 
+SceneTexture LeavesTexture(uint64_t seed) {
+  return MakeTexture(256, 256, [seed](float u, float v) {
+    // Cells of a noise field read as leaves, their borders as the dark gaps between them.
+    const float n = FractalNoise(seed, u * 12, v * 12, 12, 12, 3);
+    const float light = 0.5f + 0.5f * std::sin(n * 40.0f);
+    return glm::mix(glm::vec3(0.08f, 0.22f, 0.06f), glm::vec3(0.30f, 0.55f, 0.18f), light) +
+           Speckle(seed + 1, u, v, 64, 0.03f);
+  });
+}
+
 }  // namespace m4d

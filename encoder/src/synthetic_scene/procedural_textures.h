@@ -29,6 +29,7 @@ SceneTexture SkinTexture(uint64_t seed);           // the figure's head: skin, h
 SceneTexture PatternedCubeTexture(uint64_t seed);  // the rotating cube's faces
 SceneTexture BeachBallTexture(uint64_t seed);      // the emergent ball: coloured gores
 SceneTexture LampShadeTexture(uint64_t seed);      // fine vertical ribs
+SceneTexture LeavesTexture(uint64_t seed);         // the swaying plant: overlapping leaves
 
 }  // namespace m4d
 

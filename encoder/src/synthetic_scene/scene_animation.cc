@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "synthetic_scene/articulated_figure.h"
+#include "synthetic_scene/swaying_plant.h"
 
 namespace m4d {
 namespace {
@@ -42,6 +43,9 @@ SceneFrameState SceneStateAt(const SceneContent& content, const SyntheticSceneOp
       case ObjectMotion::kEmergent:
         model = ball;
         visible = frame >= EmergentFrame(options);
+        break;
+      case ObjectMotion::kSwaying:
+        model = PlantFoliagePose(options.realism.background_sway, frame);
         break;
     }
     state.model.push_back(model);

@@ -1,6 +1,6 @@
 // SceneFrameState: where every object of the synthetic scene is at a frame, whether it is
 // there at all, and the lighting: the articulated figure's pose, the cube's spin, the ball
-// from the emergent frame on, and the lamp's change.
+// from the emergent frame on, the plant's sway, and the lamp's change and flicker.
 #ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_ANIMATION_H_
 #define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_ANIMATION_H_
 

@@ -6,6 +6,7 @@
 #include "synthetic_scene/mesh_shapes.h"
 #include "synthetic_scene/procedural_textures.h"
 #include "synthetic_scene/scene_random.h"
+#include "synthetic_scene/swaying_plant.h"
 
 namespace m4d {
 namespace {
@@ -28,6 +29,7 @@ enum TextureId {
   kCube,
   kBeachBall,
   kLampShade,
+  kLeaves,  // made only for the swaying plant
 };
 
 std::vector<SceneTexture> BuildTextures(uint64_t seed) {
@@ -186,14 +188,26 @@ void AddMovingObjects(std::vector<SceneObject>* objects) {
   objects->push_back(std::move(ball));
 }
 
+void AddPlant(uint64_t seed, SceneContent* content) {
+  content->textures.push_back(LeavesTexture(MixBits(seed * 131 + 17)));
+  AddStatic("plant_pot", PlantPotMesh(), kWood, &content->objects);
+  SceneObject foliage;
+  foliage.name = "plant_foliage";
+  foliage.mesh = PlantFoliageMesh();
+  foliage.texture = kLeaves;
+  foliage.motion = ObjectMotion::kSwaying;
+  content->objects.push_back(std::move(foliage));
+}
+
 }  // namespace
 
-SceneContent BuildSceneContent(uint32_t seed) {
+SceneContent BuildSceneContent(uint32_t seed, bool swaying_plant) {
   SceneContent content;
   content.textures = BuildTextures(seed);
   AddRoom(&content.objects);
   AddFurniture(MixBits(seed * 977 + 3), &content.objects);
   AddMovingObjects(&content.objects);
+  if (swaying_plant) AddPlant(seed, &content);
   return content;
 }
 
@@ -207,6 +221,8 @@ const char* ObjectMotionName(ObjectMotion motion) {
       return "rotating";
     case ObjectMotion::kEmergent:
       return "emergent";
+    case ObjectMotion::kSwaying:
+      return "swaying";
   }
   return "unknown";
 }

@@ -19,6 +19,7 @@ enum class ObjectMotion {
   kFigurePart,  // a part of the articulated figure; figure_part says which
   kRotating,    // the cube spinning on the table
   kEmergent,    // the ball that appears at the emergent frame and then stays put
+  kSwaying,     // the plant's leaves, swaying slightly (realistic scene only)
 };
 
 struct SceneObject {
@@ -36,9 +37,10 @@ struct SceneContent {
 };
 
 // The room (floor, ceiling, back and side walls, a poster, a rug), its furniture (table,
-// bookshelf with books, cabinet, floor lamp), the figure, the cube and the ball. The seed
-// varies the textures' noise and the books' sizes and colours.
-SceneContent BuildSceneContent(uint32_t seed);
+// bookshelf with books, cabinet, floor lamp), the figure, the cube and the ball, and with
+// `swaying_plant` a potted plant at the back (after them all, so the others keep their
+// indices). The seed varies the textures' noise and the books' sizes and colours.
+SceneContent BuildSceneContent(uint32_t seed, bool swaying_plant);
 
 const char* ObjectMotionName(ObjectMotion motion);
 

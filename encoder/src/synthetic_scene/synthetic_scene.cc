@@ -17,7 +17,7 @@ Status SyntheticScene::Create(const SyntheticSceneOptions& options,
   created->options_.emergent_frame = EmergentFrame(options);
   created->cameras_ = MakeCameraRig(options);
   created->camera_names_ = CameraNames(options.cameras);
-  created->content_ = BuildSceneContent(options.seed);
+  created->content_ = BuildSceneContent(options.seed, options.realism.background_sway > 0.0f);
   M4D_RETURN_IF_ERROR(SceneRenderer::Create(created->content_, options.width, options.height,
                                             options.supersample, options.msaa_samples,
                                             &created->renderer_));
