@@ -49,6 +49,24 @@ Status WriteFrameImages(const std::string& root, const std::vector<std::string>&
   return Status::Ok();
 }
 
+Json RealismJson(const CaptureRealism& r) {
+  Json json;
+  json["noise_sigma"] = r.noise_sigma;
+  json["jpeg_quality"] = r.jpeg_quality;
+  json["exposure_spread"] = r.exposure_spread;
+  json["white_balance_spread"] = r.white_balance_spread;
+  json["k1"] = r.k1;
+  json["k2"] = r.k2;
+  json["p1"] = r.p1;
+  json["p2"] = r.p2;
+  json["left_handed"] = r.left_handed;
+  json["sparse_rig"] = r.sparse_rig;
+  json["sparse_rig_arc_degrees"] = r.sparse_rig_arc_degrees;
+  json["background_sway"] = r.background_sway;
+  json["light_flicker"] = r.light_flicker;
+  return json;
+}
+
 // What the scene holds and when things happen, for tools and tests that need to know.
 std::string SceneJsonText(const SyntheticScene& scene) {
   const SyntheticSceneOptions& o = scene.options();
@@ -84,6 +102,7 @@ std::string SceneJsonText(const SyntheticScene& scene) {
                        {"triangles", object.mesh.triangle_count()}});
   }
   json["objects"] = std::move(objects);
+  json["realism"] = RealismJson(o.realism);
   return json.dump(2) + "\n";
 }
 
