@@ -8,15 +8,46 @@
 #include "synthetic_scene/scene_writer.h"
 
 namespace m4d {
+namespace {
+
+// A --scene-* flag: when given, it sets `field` of whichever built-in scene is generated.
+template <typename T>
+void AddSceneEdit(CLI::App* command, const std::string& name, T SyntheticSceneOptions::*field,
+                  const std::string& help, CaptureArguments* args) {
+  command->add_option_function<T>(
+      name,
+      [args, field](const T& value) {
+        args->scene_edits.push_back(
+            [field, value](SyntheticSceneOptions* o) { o->*field = value; });
+      },
+      help);
+}
+
+// The built-in scene a dataset name stands for; false for any other name.
+bool BuiltInScene(const CaptureArguments& args, SyntheticSceneOptions* options) {
+  if (args.dataset == "default") {
+    *options = SyntheticSceneOptions();
+  } else if (args.dataset == "realistic") {
+    *options = SyntheticSceneOptions::Realistic();
+  } else {
+    return false;
+  }
+  for (const auto& edit : args.scene_edits) edit(options);
+  return true;
+}
+
+}  // namespace
 
 void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
   command
       ->add_option("dataset", args->dataset,
                    "N3DV, transforms.json, COLMAP or Dynamic3DGaussians directory, or "
-                   "'default' for the built-in synthetic scene")
+                   "'default' for the built-in synthetic scene, 'realistic' for it with the "
+                   "flaws of a real capture")
       ->capture_default_str();
-  command->add_option("--scene-dir", args->scene_dir, "where the default scene is generated")
-      ->capture_default_str();
+  command->add_option("--scene-dir", args->scene_dir,
+                      "where a built-in scene is generated (default: out/default-scene, "
+                      "out/realistic-scene)");
   command
       ->add_option("--test-camera", args->capture.test_camera,
                    "held-out camera (-1: none; N3DV convention: 0)")
@@ -30,35 +61,37 @@ void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--initial-points", args->capture.initial_points,
                       "COLMAP sparse model or PLY point cloud for initialisation");
-  command->add_option("--scene-cameras", args->scene.cameras, "default scene: cameras")
-      ->capture_default_str();
-  command->add_option("--scene-width", args->scene.width, "default scene: image width")
-      ->capture_default_str();
-  command->add_option("--scene-height", args->scene.height, "default scene: image height")
-      ->capture_default_str();
-  command->add_option("--scene-frames", args->scene.frames, "default scene: frames")
-      ->capture_default_str();
-  command->add_option("--scene-background-change", args->scene.background_change_frame,
-                      "default scene: frame of the background change (-1: none)");
+  AddSceneEdit(command, "--scene-cameras", &SyntheticSceneOptions::cameras,
+               "built-in scene: cameras (default 16; realistic: 4)", args);
+  AddSceneEdit(command, "--scene-width", &SyntheticSceneOptions::width,
+               "built-in scene: image width (default 320)", args);
+  AddSceneEdit(command, "--scene-height", &SyntheticSceneOptions::height,
+               "built-in scene: image height (default 240)", args);
+  AddSceneEdit(command, "--scene-frames", &SyntheticSceneOptions::frames,
+               "built-in scene: frames (default 20)", args);
+  AddSceneEdit(command, "--scene-background-change",
+               &SyntheticSceneOptions::background_change_frame,
+               "built-in scene: frame of the background change (-1: none)", args);
 }
 
 Status OpenCapture(const CaptureArguments& args, Capture* capture) {
   std::string path = args.dataset;
-  if (args.dataset == "default") {
-    path = args.scene_dir;
+  SyntheticSceneOptions scene;
+  if (BuiltInScene(args, &scene)) {
+    path = args.scene_dir.empty() ? "out/" + args.dataset + "-scene" : args.scene_dir;
     std::error_code ec;
     if (!std::filesystem::exists(std::filesystem::path(path) / "transforms.json", ec)) {
-      std::fprintf(stderr, "generating the default scene into %s\n", path.c_str());
+      std::fprintf(stderr, "generating the %s scene into %s\n", args.dataset.c_str(), path.c_str());
       const auto start = std::chrono::steady_clock::now();
-      M4D_RETURN_IF_ERROR(WriteSyntheticScene(args.scene, path, [](int done, int count) {
+      M4D_RETURN_IF_ERROR(WriteSyntheticScene(scene, path, [](int done, int count) {
         std::fprintf(stderr, "\r  frame %d/%d", done, count);
         if (done == count) std::fprintf(stderr, "\n");
       }));
       std::fprintf(stderr, "  done in %.1f s\n",
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     } else {
-      std::fprintf(stderr, "using the default scene in %s (delete it to regenerate)\n",
-                   path.c_str());
+      std::fprintf(stderr, "using the %s scene in %s (delete it to regenerate)\n",
+                   args.dataset.c_str(), path.c_str());
     }
   }
   M4D_RETURN_IF_ERROR(LoadCapture(path, args.capture, capture));

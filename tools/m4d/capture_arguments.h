@@ -1,10 +1,13 @@
 // The dataset argument every m4d command takes: a directory in any supported layout, or
-// "default" for the built-in synthetic scene (generated into --scene-dir on first use).
+// "default" or "realistic" for the built-in synthetic scene, clean or with the flaws of a
+// real capture (generated into --scene-dir on first use).
 #ifndef M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_
 #define M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 #include "dataset/capture.h"
@@ -15,15 +18,16 @@ namespace m4d {
 
 struct CaptureArguments {
   std::string dataset = "default";
-  std::string scene_dir = "out/default-scene";
+  std::string scene_dir;  // empty: out/<dataset>-scene for a built-in scene
   CaptureOptions capture;
-  SyntheticSceneOptions scene;
+  // What the --scene-* flags change in the built-in scene's options, in order.
+  std::vector<std::function<void(SyntheticSceneOptions*)>> scene_edits;
 };
 
 // Adds DATASET and the loading options to a command.
 void AddCaptureArguments(CLI::App* command, CaptureArguments* args);
 
-// Loads the dataset (generating the default scene first if needed), printing what it does.
+// Loads the dataset (generating a built-in scene first if needed), printing what it does.
 Status OpenCapture(const CaptureArguments& args, Capture* capture);
 
 }  // namespace m4d

@@ -9,16 +9,55 @@
 #include "synthetic_scene/scene_writer.h"
 
 namespace m4d {
+namespace {
+
+// The CaptureRealism flags. Defined after --realistic, so that they override its preset
+// (CLI11 applies options in the order they are defined).
+void AddRealismOptions(CLI::App* cmd, CaptureRealism* r) {
+  cmd->add_option("--noise", r->noise_sigma, "sensor noise sigma, 8-bit levels (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--jpeg-quality", r->jpeg_quality, "write JPEGs of this quality (0: PNG)")
+      ->capture_default_str();
+  cmd->add_option("--exposure-spread", r->exposure_spread,
+                  "per-camera gain 1 +- this (0: all alike)")
+      ->capture_default_str();
+  cmd->add_option("--white-balance-spread", r->white_balance_spread,
+                  "per-camera, per-channel gain 1 +- this (0: neutral)")
+      ->capture_default_str();
+  cmd->add_option("--k1", r->k1, "radial distortion k1 (OpenCV model)")->capture_default_str();
+  cmd->add_option("--k2", r->k2, "radial distortion k2")->capture_default_str();
+  cmd->add_option("--p1", r->p1, "tangential distortion p1")->capture_default_str();
+  cmd->add_option("--p2", r->p2, "tangential distortion p2")->capture_default_str();
+  cmd->add_flag("--left-handed,!--right-handed", r->left_handed,
+                "write the world mirrored in x (rotations of determinant -1)");
+  cmd->add_flag("--sparse-rig,!--row-rig", r->sparse_rig,
+                "cameras on one wide arc instead of front-facing rows");
+  cmd->add_option("--sparse-rig-arc", r->sparse_rig_arc_degrees, "sparse rig's arc, degrees")
+      ->capture_default_str();
+  cmd->add_option("--background-sway", r->background_sway,
+                  "a plant at the back sways this much, metres (0: no plant)")
+      ->capture_default_str();
+  cmd->add_option("--light-flicker", r->light_flicker,
+                  "lights' strength varies by +- this every frame (0: steady)")
+      ->capture_default_str();
+}
+
+}  // namespace
 
 void AddSceneCommand(CLI::App* app, int* exit_code) {
   struct Arguments {
     SyntheticSceneOptions scene;
-    std::string output = "out/default-scene";
+    std::string output;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* cmd = app->add_subcommand("scene", "write the built-in synthetic scene");
   SyntheticSceneOptions& s = args->scene;
-  cmd->add_option("-o,--output", args->output, "directory")->capture_default_str();
+  cmd->add_option("-o,--output", args->output,
+                  "directory (default: out/default-scene, or out/realistic-scene)");
+  cmd->add_flag_callback(
+      "--realistic", [args]() { args->scene = SyntheticSceneOptions::Realistic(); },
+      "the realistic preset: every flaw below on, a sparse rig of 4 cameras; the options "
+      "below override it");
   cmd->add_option("--cameras", s.cameras, "cameras of the rig")->capture_default_str();
   cmd->add_option("--width", s.width, "image width")->capture_default_str();
   cmd->add_option("--height", s.height, "image height")->capture_default_str();
@@ -30,8 +69,12 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
                   "frame where the lamp changes the background (-1: never)")
       ->capture_default_str();
   cmd->add_option("--points", s.points, "initial points")->capture_default_str();
-  cmd->add_option("--seed", s.seed, "layout and texture seed")->capture_default_str();
-  cmd->callback([args, exit_code]() {
+  cmd->add_option("--seed", s.seed, "layout, texture and realism seed")->capture_default_str();
+  AddRealismOptions(cmd, &s.realism);
+  cmd->callback([args, cmd, exit_code]() {
+    if (args->output.empty()) {
+      args->output = cmd->count("--realistic") > 0 ? "out/realistic-scene" : "out/default-scene";
+    }
     const auto start = std::chrono::steady_clock::now();
     Status status = WriteSyntheticScene(args->scene, args->output, [](int done, int count) {
       std::fprintf(stderr, "\rrendering frame %d/%d", done, count);
