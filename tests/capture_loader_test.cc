@@ -491,7 +491,7 @@ TEST(NerfstudioLoaderTest, LoadsStaticCapturesWithIntrinsicsOverride) {
   rig[1].cx = 21;
   rig[1].cy = 14;
   Json root = {{"w", kWidth},     {"h", kHeight},    {"fl_x", rig[0].fx}, {"fl_y", rig[0].fy},
-               {"cx", rig[0].cx}, {"cy", rig[0].cy}, {"k1", 0.01}};
+               {"cx", rig[0].cx}, {"cy", rig[0].cy}, {"k1", 0.0}};
   dir.Subdir("images");
   for (int c = 0; c < 3; ++c) {
     const std::string file = "images/view_" + std::to_string(c) + ".png";
@@ -521,7 +521,7 @@ TEST(NerfstudioLoaderTest, LoadsStaticCapturesWithIntrinsicsOverride) {
   EXPECT_EQ(capture.camera_names[2], "images/view_2.png");
   for (int c = 0; c < 3; ++c) ExpectSameCamera(capture.camera(0, c), rig[c], 1e-5);
   ExpectView(capture, 0, 1, ViewImage(40, 30, 0, 1), 0);
-  EXPECT_EQ(capture.notes.size(), 1u);  // k1 ignored
+  EXPECT_TRUE(capture.notes.empty());  // k1 = 0: pinhole cameras, nothing undistorted
   EXPECT_TRUE(capture.initial_points.positions.empty());
 }
 
@@ -558,9 +558,9 @@ TEST(NerfstudioLoaderTest, RejectsIncompleteAndMalformedFiles) {
   Json not_rigid = root;
   not_rigid["frames"][2]["transform_matrix"][0][0] = 3.0;
   EXPECT_EQ(load_with(not_rigid).code(), M4D_ERR_INVALID_ARG);
-  Json fisheye = root;
-  fisheye["camera_model"] = "OPENCV_FISHEYE";
-  EXPECT_EQ(load_with(fisheye).code(), M4D_ERR_UNSUPPORTED);
+  Json equirectangular = root;
+  equirectangular["camera_model"] = "EQUIRECTANGULAR";
+  EXPECT_EQ(load_with(equirectangular).code(), M4D_ERR_UNSUPPORTED);
   Json no_width = root;
   no_width.erase("w");
   EXPECT_EQ(load_with(no_width).code(), M4D_ERR_INVALID_ARG);
@@ -837,6 +837,57 @@ TEST(LensUndistortionTest, ColmapCamerasAreUndistortedToPinholes) {
   ExpectUndistortedViews(half, rig, cases, written, 2, 40);
 }
 
+TEST(LensUndistortionTest, NerfstudioViewsAreUndistortedToPinholes) {
+  TempDir dir;
+  // Shared OPENCV k1, k2, k3, p1, p2; view 1 overrides with OPENCV_FISHEYE k1..k4, view 2 is
+  // a pinhole.
+  const std::vector<LensCase> all = LensCases();
+  const std::vector<LensCase> cases = {
+      {"OPENCV", MakeLens(LensModel::kOpenCv, {-0.25, 0.06, 0.01}, 0.001, -0.0015), {}},
+      all[1],
+      all.back()};
+  std::vector<Camera> rig = LensRig(cases);
+  Json root = {{"camera_model", "OPENCV"},
+               {"w", kLensWidth},
+               {"h", kLensHeight},
+               {"k1", -0.25},
+               {"k2", 0.06},
+               {"k3", 0.01},
+               {"p1", 0.001},
+               {"p2", -0.0015}};
+  std::vector<Image> written;
+  for (int c = 0; c < 3; ++c) {
+    const std::string file = "v" + std::to_string(c) + ".png";
+    written.push_back(DistortedPattern(rig[c], cases[c].lens));
+    ASSERT_TRUE(WritePng(dir.path() + "/" + file, written.back()).ok());
+    Json entry = FrameEntry(rig[c], file);
+    if (c == 1) {
+      entry.update({{"camera_model", "OPENCV_FISHEYE"},
+                    {"k1", 0.06},
+                    {"k2", -0.02},
+                    {"k3", 0.01},
+                    {"k4", -0.004},
+                    {"p1", 0},
+                    {"p2", 0}});
+    }
+    if (c == 2) {
+      entry.update(
+          {{"camera_model", "PINHOLE"}, {"k1", 0}, {"k2", 0}, {"k3", 0}, {"p1", 0}, {"p2", 0}});
+    }
+    root["frames"].push_back(entry);
+  }
+  WriteText(dir.path() + "/transforms.json", root.dump());
+  Capture capture;
+  const Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectUndistortedViews(capture, rig, cases, written, 1, 45);
+  ASSERT_EQ(capture.notes.size(), 1u);
+  EXPECT_EQ(capture.notes[0].find(
+                "nerfstudio: 2 of 3 cameras undistorted (OPENCV, OPENCV_FISHEYE) to pinhole"),
+            0u)
+      << capture.notes[0];
+}
+
 TEST(LensUndistortionTest, LoadersRefuseDistortionTheyCannotUndistort) {
   TempDir dir;
   std::vector<Camera> rig = LensRig({LensCases()[0], LensCases()[0]});
@@ -852,6 +903,26 @@ TEST(LensUndistortionTest, LoadersRefuseDistortionTheyCannotUndistort) {
   WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "OPENCV", {0.1, nan, 0, 0})},
               SomePoints(), true);
   EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM);
+  // transforms.json: too strong, coefficients of another model, an unknown model.
+  TempDir nerfstudio;
+  ASSERT_TRUE(
+      WritePng(nerfstudio.path() + "/v.png", ViewImage(kLensWidth, kLensHeight, 0, 0)).ok());
+  const Json base = {
+      {"w", kLensWidth}, {"h", kLensHeight}, {"frames", {FrameEntry(rig[0], "v.png")}}};
+  auto load_with = [&](const Json& extra) {
+    Json root = base;
+    root.update(extra);
+    WriteText(nerfstudio.path() + "/transforms.json", root.dump());
+    return Load(nerfstudio.path(), &capture);
+  };
+  ASSERT_TRUE(load_with({{"k1", 0.05}}).ok());
+  status = load_with({{"k1", -0.9}});
+  EXPECT_EQ(status.code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_NE(status.message().find("'v.png'"), std::string::npos) << status.message();
+  EXPECT_EQ(load_with({{"k4", 0.01}}).code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(load_with({{"camera_model", "OPENCV_FISHEYE"}, {"p1", 0.01}}).code(),
+            M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(load_with({{"camera_model", "FISHEYE624"}}).code(), M4D_ERR_UNSUPPORTED);
 }
 
 // ---- Dynamic 3D Gaussians -------------------------------------------------------------------
