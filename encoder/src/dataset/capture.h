@@ -33,7 +33,7 @@ struct Capture {
   int test_camera = -1;                      // held out from training; -1: none
   PointCloud initial_points;                 // may be empty: initialise randomly in bounds
   std::unique_ptr<FrameSource> frames;
-  std::vector<std::string> notes;  // what the loader approximated, e.g. ignored lens distortion
+  std::vector<std::string> notes;  // what the loader changed, e.g. undistorted cameras
 
   int camera_count() const { return static_cast<int>(camera_names.size()); }
   const Camera& camera(int frame, int index) const { return cameras[frame][index]; }
