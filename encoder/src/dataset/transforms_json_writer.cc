@@ -1,27 +1,14 @@
 #include "dataset/transforms_json_writer.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include <nlohmann/json.hpp>
 
 #include "image/file_bytes.h"
+#include "io/shortest_decimal.h"
 
 namespace m4d {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-// The shortest decimal that reads back as the same float, so the file shows 0.1, not
-// 0.10000000149011612.
-double ShortestDecimal(float value) {
-  char text[32];
-  for (int digits = 6; digits <= 9; ++digits) {
-    std::snprintf(text, sizeof(text), "%.*g", digits, static_cast<double>(value));
-    if (std::strtof(text, nullptr) == value) break;
-  }
-  return std::strtod(text, nullptr) + 0.0;  // + 0.0: no "-0.0" in the file
-}
 
 // Camera-to-world in OpenGL axes (x right, y up, z backward): the OpenCV camera's axes are
 // the rows of R; y and z flip. Mirroring the world negates the first row.

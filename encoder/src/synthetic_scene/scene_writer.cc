@@ -1,7 +1,6 @@
 #include "synthetic_scene/scene_writer.h"
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -16,6 +15,7 @@
 #include "image/file_bytes.h"
 #include "image/jpeg_io.h"
 #include "image/png_io.h"
+#include "io/shortest_decimal.h"
 #include "ply/point_cloud_ply.h"
 #include "synthetic_scene/synthetic_scene.h"
 
@@ -50,28 +50,21 @@ Status WriteFrameImages(const std::string& root, const std::vector<std::string>&
   return Status::Ok();
 }
 
-// A float as the short decimal it was most likely given as (0.08, not 0.0799999982).
-double ShortDecimal(float value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.6g", static_cast<double>(value));
-  return std::strtod(text, nullptr);
-}
-
 Json RealismJson(const CaptureRealism& r) {
   Json json;
-  json["noise_sigma"] = ShortDecimal(r.noise_sigma);
+  json["noise_sigma"] = ShortestDecimal(r.noise_sigma);
   json["jpeg_quality"] = r.jpeg_quality;
-  json["exposure_spread"] = ShortDecimal(r.exposure_spread);
-  json["white_balance_spread"] = ShortDecimal(r.white_balance_spread);
-  json["k1"] = ShortDecimal(r.k1);
-  json["k2"] = ShortDecimal(r.k2);
-  json["p1"] = ShortDecimal(r.p1);
-  json["p2"] = ShortDecimal(r.p2);
+  json["exposure_spread"] = ShortestDecimal(r.exposure_spread);
+  json["white_balance_spread"] = ShortestDecimal(r.white_balance_spread);
+  json["k1"] = ShortestDecimal(r.k1);
+  json["k2"] = ShortestDecimal(r.k2);
+  json["p1"] = ShortestDecimal(r.p1);
+  json["p2"] = ShortestDecimal(r.p2);
   json["left_handed"] = r.left_handed;
   json["sparse_rig"] = r.sparse_rig;
-  json["sparse_rig_arc_degrees"] = ShortDecimal(r.sparse_rig_arc_degrees);
-  json["background_sway"] = ShortDecimal(r.background_sway);
-  json["light_flicker"] = ShortDecimal(r.light_flicker);
+  json["sparse_rig_arc_degrees"] = ShortestDecimal(r.sparse_rig_arc_degrees);
+  json["background_sway"] = ShortestDecimal(r.background_sway);
+  json["light_flicker"] = ShortestDecimal(r.light_flicker);
   return json;
 }
 
