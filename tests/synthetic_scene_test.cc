@@ -17,12 +17,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dataset/capture_loader.h"
+#include "dataset/undistortion.h"
 #include "image/byte_samples.h"
 #include "image/file_bytes.h"
 #include "image/jpeg_io.h"
 #include "image/png_io.h"
 #include "ply/point_cloud_ply.h"
 #include "synthetic_scene/camera_rig.h"
+#include "synthetic_scene/lens_resampling.h"
 #include "synthetic_scene/scene_animation.h"
 #include "synthetic_scene/scene_lighting.h"
 #include "synthetic_scene/scene_renderer.h"
@@ -870,6 +873,62 @@ TEST(SyntheticRealism, FlickerScalesTheLightEveryFrame) {
   for (int f = 0; f < 50; ++f) {
     EXPECT_LE(std::fabs(LightFlickerGain(o, f) - 1.0f), 0.05f);
     EXPECT_EQ(LightFlickerGain(TinyOptions(), f), 1.0f);
+  }
+}
+
+TEST(SyntheticRealism, LensDistortionIsWrittenAndUndistortsToThePinholeRender) {
+  SyntheticSceneOptions o = TinyOptions();
+  o.width = 96;
+  o.height = 72;
+  o.frames = 1;
+  std::vector<std::vector<uint8_t>> pinhole;  // rendered first: one GL context at a time
+  {
+    std::unique_ptr<SyntheticScene> clean = MakeScene(o);
+    ASSERT_NE(clean, nullptr);
+    for (int c = 0; c < o.cameras; ++c) pinhole.push_back(Render(clean.get(), 0, c));
+  }
+  CaptureRealism& r = o.realism;
+  r.k1 = -0.15f;
+  r.k2 = 0.04f;
+  r.p1 = 0.002f;
+  r.p2 = -0.001f;
+  TempDir dir("scene");
+  ASSERT_TRUE(WriteSyntheticScene(o, dir.path()).ok());
+  const nlohmann::json transforms = ReadJson(dir.path() + "/transforms.json");
+  EXPECT_EQ(transforms["camera_model"], "OPENCV");
+  EXPECT_EQ(transforms["k1"].get<double>(), -0.15);
+  EXPECT_EQ(transforms["k2"].get<double>(), 0.04);
+  EXPECT_EQ(transforms["p1"].get<double>(), 0.002);
+  EXPECT_EQ(transforms["p2"].get<double>(), -0.001);
+  EXPECT_FALSE(transforms.contains("k3"));
+  EXPECT_EQ(ReadJson(dir.path() + "/scene.json")["realism"]["k1"].get<double>(), -0.15);
+  // Undistorting each view back to the rig's pinhole camera: every pinhole pixel takes the
+  // distorted image at its distorted position.
+  const LensDistortion distortion = SceneLensDistortion(r);
+  const std::vector<Camera> rig = MakeCameraRig(o);
+  UndistortionMap map;
+  ASSERT_TRUE(BuildUndistortionMap(rig[0], distortion, rig[0], "test", &map).ok());
+  for (int c = 0; c < o.cameras; ++c) {
+    const Image distorted =
+        ReadImage(dir.path() + "/" + SyntheticImagePath(CameraNames(o.cameras)[c], 0));
+    Image undistorted;
+    ASSERT_TRUE(Remap(map, distorted, &undistorted).ok());
+    const double recovered = Psnr(ImageBytes(undistorted), pinhole[c], o.width, o.height, 6);
+    const double as_is = Psnr(ImageBytes(distorted), pinhole[c], o.width, o.height, 6);
+    EXPECT_GT(recovered, 30.0) << "camera " << c;
+    EXPECT_LT(as_is, recovered - 5.0) << "camera " << c;  // the lens did bend the view
+  }
+  // The in-memory capture serves the views as loading the files does: undistorted.
+  Capture memory, loaded;
+  ASSERT_TRUE(GenerateSyntheticCapture(o, &memory).ok());
+  ASSERT_TRUE(LoadCapture(dir.path(), CaptureOptions(), &loaded).ok());
+  for (int c = 0; c < o.cameras; ++c) {
+    EXPECT_EQ(memory.camera(0, c).fx, loaded.camera(0, c).fx);
+    EXPECT_LT(memory.camera(0, c).fx, rig[c].fx);  // barrel: a wider pinhole view
+    Image a, b;
+    ASSERT_TRUE(memory.LoadImage(0, c, &a).ok());
+    ASSERT_TRUE(loaded.LoadImage(0, c, &b).ok());
+    EXPECT_EQ(a.pixels, b.pixels) << "camera " << c;
   }
 }
 

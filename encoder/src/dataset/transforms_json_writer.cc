@@ -35,6 +35,21 @@ void PutIntrinsics(const Camera& camera, Json* json) {
   (*json)["cy"] = ShortestDecimal(camera.cy);
 }
 
+Status PutDistortion(const LensDistortion& d, Json* json) {
+  if (d.model == LensModel::kNone) return Status::Ok();
+  if (d.model != LensModel::kOpenCv) {
+    return Status(M4D_ERR_INVALID_ARG, std::string("transforms.json: cannot write lens model ") +
+                                           LensModelName(d.model) + ", only OPENCV");
+  }
+  M4D_RETURN_IF_ERROR(CheckLensDistortion(d, "transforms.json"));
+  (*json)["k1"] = ShortestDecimal(static_cast<float>(d.k[0]));
+  (*json)["k2"] = ShortestDecimal(static_cast<float>(d.k[1]));
+  if (d.k[2] != 0) (*json)["k3"] = ShortestDecimal(static_cast<float>(d.k[2]));
+  (*json)["p1"] = ShortestDecimal(static_cast<float>(d.p1));
+  (*json)["p2"] = ShortestDecimal(static_cast<float>(d.p2));
+  return Status::Ok();
+}
+
 bool SameIntrinsics(const Camera& a, const Camera& b) {
   return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy &&
          a.cx == b.cx && a.cy == b.cy;
@@ -51,6 +66,7 @@ Status TransformsJsonText(const TransformsJsonRig& rig, std::string* text) {
   Json json;
   json["camera_model"] = "OPENCV";
   PutIntrinsics(rig.cameras[0], &json);
+  M4D_RETURN_IF_ERROR(PutDistortion(rig.distortion, &json));
   if (!rig.ply_file_path.empty()) json["ply_file_path"] = rig.ply_file_path;
   Json frames = Json::array();
   const double last = rig.frame_count > 1 ? rig.frame_count - 1 : 1;

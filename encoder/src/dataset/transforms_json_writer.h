@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "dataset/lens_distortion.h"
 #include "render/camera.h"
 
 namespace m4d {
@@ -23,11 +24,15 @@ struct TransformsJsonRig {
   // Writes the world mirrored through x = 0 (x negated in every transform_matrix: rotations
   // of determinant -1), as some calibration tools' left-handed output is.
   bool mirror_world_x = false;
+  // The lens every camera shares: none, or the OPENCV model's k1, k2, k3, p1, p2 (written
+  // beside the shared intrinsics; k3 only when nonzero).
+  LensDistortion distortion;
 };
 
 // The JSON text: shared intrinsics from camera 0 (entries whose camera differs carry their
 // own), one entry per (frame, camera) in frame-major order with camera-to-world matrices in
-// OpenGL axes. M4D_ERR_INVALID_ARG for an empty rig, mismatched names or an invalid camera.
+// OpenGL axes. M4D_ERR_INVALID_ARG for an empty rig, mismatched names, an invalid camera or
+// a lens model other than OPENCV.
 Status TransformsJsonText(const TransformsJsonRig& rig, std::string* text);
 
 Status WriteTransformsJson(const std::string& path, const TransformsJsonRig& rig);

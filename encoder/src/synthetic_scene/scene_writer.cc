@@ -17,6 +17,7 @@
 #include "image/png_io.h"
 #include "io/shortest_decimal.h"
 #include "ply/point_cloud_ply.h"
+#include "synthetic_scene/lens_resampling.h"
 #include "synthetic_scene/synthetic_scene.h"
 
 namespace m4d {
@@ -157,6 +158,7 @@ Status WriteSyntheticScene(const SyntheticSceneOptions& options, const std::stri
   };
   rig.ply_file_path = kPlyName;
   rig.mirror_world_x = options.realism.left_handed;
+  rig.distortion = SceneLensDistortion(options.realism);
   M4D_RETURN_IF_ERROR(WriteTransformsJson(root + "/transforms.json", rig));
   return WriteText(root + "/scene.json", SceneJsonText(*scene));
 }

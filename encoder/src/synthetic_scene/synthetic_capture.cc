@@ -4,8 +4,10 @@
 #include <utility>
 #include <vector>
 
+#include "dataset/undistorting_frame_source.h"
 #include "image/byte_samples.h"
 #include "image/jpeg_io.h"
+#include "synthetic_scene/lens_resampling.h"
 #include "synthetic_scene/synthetic_scene.h"
 
 namespace m4d {
@@ -77,6 +79,14 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
   result.initial_points = scene->InitialPoints();
   result.frames = std::make_unique<MemoryFrameSource>(options.width, options.height,
                                                       options.cameras, std::move(views));
+  // As a loader gives a distorted capture: undistorted to pinhole cameras.
+  const LensDistortion distortion = SceneLensDistortion(options.realism);
+  if (HasDistortion(distortion)) {
+    M4D_RETURN_IF_ERROR(UndistortCapture(
+        std::vector<std::vector<LensDistortion>>(
+            options.frames, std::vector<LensDistortion>(options.cameras, distortion)),
+        &result));
+  }
   *capture = std::move(result);
   return Status::Ok();
 }

@@ -1,7 +1,8 @@
 // The synthetic scene straight into a Capture, without files: every view is rendered up
 // front and kept as 8-bit RGB in memory (the same samples the PNG or JPEG files of
 // WriteSyntheticScene decode to), with the rig's calibration (mirrored when left-handed),
-// camera 0 held out and the initial point cloud.
+// camera 0 held out and the initial point cloud. With lens distortion the views are served
+// undistorted to pinhole cameras, as the transforms.json loader serves the files.
 #ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
 #define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
 

@@ -18,7 +18,14 @@ Status SyntheticScene::Create(const SyntheticSceneOptions& options,
   created->cameras_ = MakeCameraRig(options);
   created->camera_names_ = CameraNames(options.cameras);
   created->content_ = BuildSceneContent(options.seed, options.realism.background_sway > 0.0f);
-  M4D_RETURN_IF_ERROR(SceneRenderer::Create(created->content_, options.width, options.height,
+  created->render_cameras_ = created->cameras_;
+  const LensDistortion distortion = SceneLensDistortion(options.realism);
+  if (HasDistortion(distortion)) {
+    M4D_RETURN_IF_ERROR(LensResampler::Create(created->cameras_[0], distortion, &created->lens_));
+    for (Camera& camera : created->render_cameras_) camera = created->lens_->Canvas(camera);
+  }
+  const Camera& canvas = created->render_cameras_[0];
+  M4D_RETURN_IF_ERROR(SceneRenderer::Create(created->content_, canvas.width, canvas.height,
                                             options.supersample, options.msaa_samples,
                                             &created->renderer_));
   *scene = std::move(created);
@@ -31,9 +38,15 @@ Status SyntheticScene::RenderView(int frame, int camera, std::vector<uint8_t>* r
                                            ", camera " + std::to_string(camera) + ") out of range");
   }
   const SceneFrameState state = SceneStateAt(content_, options_, frame);
-  if (!HasSensorEffects(options_.realism)) return renderer_->Render(state, cameras_[camera], rgb);
-  M4D_RETURN_IF_ERROR(renderer_->Render(state, cameras_[camera], &pinhole_));
-  levels_.assign(pinhole_.begin(), pinhole_.end());
+  if (!lens_ && !HasSensorEffects(options_.realism)) {
+    return renderer_->Render(state, cameras_[camera], rgb);
+  }
+  M4D_RETURN_IF_ERROR(renderer_->Render(state, render_cameras_[camera], &pinhole_));
+  if (lens_) {
+    M4D_RETURN_IF_ERROR(lens_->Distort(pinhole_, &levels_));
+  } else {
+    levels_.assign(pinhole_.begin(), pinhole_.end());
+  }
   ApplySensorEffects(options_, frame, camera, levels_, rgb);
   return Status::Ok();
 }

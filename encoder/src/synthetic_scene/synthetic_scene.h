@@ -14,6 +14,7 @@
 #include "common/status.h"
 #include "dataset/point_cloud.h"
 #include "render/camera.h"
+#include "synthetic_scene/lens_resampling.h"
 #include "synthetic_scene/scene_content.h"
 #include "synthetic_scene/scene_renderer.h"
 #include "synthetic_scene/synthetic_scene_options.h"
@@ -37,9 +38,9 @@ class SyntheticScene {
   const SceneContent& content() const { return content_; }
   const std::string& renderer_description() const { return renderer_->description(); }
 
-  // Renders view (frame, camera): width * height * 3 bytes of RGB, row 0 at the top, with
-  // the sensor's gains and noise (not JPEG, which the writer and the capture apply). Same
-  // options, same bytes.
+  // Renders view (frame, camera): width * height * 3 bytes of RGB, row 0 at the top, through
+  // the lens and with the sensor's gains and noise (not JPEG, which the writer and the
+  // capture apply). Same options, same bytes.
   Status RenderView(int frame, int camera, std::vector<uint8_t>* rgb);
 
   // options.points points on the surfaces present at frame 0, where they are then, in the
@@ -54,7 +55,9 @@ class SyntheticScene {
   std::vector<std::string> camera_names_;
   SceneContent content_;
   std::unique_ptr<SceneRenderer> renderer_;
-  std::vector<uint8_t> pinhole_;  // a view as rendered, before the sensor
+  std::unique_ptr<LensResampler> lens_;  // null for a pinhole lens
+  std::vector<Camera> render_cameras_;   // cameras_, or their canvases with a lens
+  std::vector<uint8_t> pinhole_;         // a view as rendered, before the lens and sensor
   std::vector<float> levels_;
 };
 
