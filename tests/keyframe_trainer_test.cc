@@ -77,7 +77,7 @@ Scene MakeScene() {
     }
     images.push_back(std::move(image));
   }
-  capture.test_camera = 4;
+  capture.test_cameras = {4};
   capture.frames = std::make_unique<MemoryFrames>(std::move(images));
   std::mt19937 rng(5);
   std::normal_distribution<float> noise(0.0f, 0.05f);
@@ -120,7 +120,7 @@ TrainingRun Train(const Scene& scene, const KeyframeTrainingOptions& options) {
   const Capture& capture = scene.capture;
   TrainingViews train, test;
   EXPECT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
-  EXPECT_TRUE(LoadTrainingViews(capture, 0, {capture.test_camera}, &test).ok());
+  EXPECT_TRUE(LoadTrainingViews(capture, 0, capture.test_cameras, &test).ok());
   EXPECT_EQ(train.size(), kCameras - 1);
   GaussianModel initial;
   EXPECT_TRUE(

@@ -58,7 +58,7 @@ Capture MakeCapture() {
   Capture capture;
   capture.layout = "memory";
   capture.frame_count = kFrames;
-  capture.test_camera = 0;
+  capture.test_cameras = {0};
   std::vector<std::vector<Image>> images(kFrames);
   std::vector<Camera> rig;
   const float target[3] = {0, 0, 0};

@@ -13,6 +13,7 @@
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
 #include "sequence_report_output.h"
+#include "stream/frame_rate.h"
 #include "stream_check.h"
 #include "train/progress_bar.h"
 #include "video/video_writer.h"
@@ -235,6 +236,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"independent_frames", o.independent_frames},
           {"keyframe_bits", QuantizationBits(o.quantization)},
           {"compensation_bits", QuantizationBits(o.compensation_quantization)},
+          {"fps", args.fps},
           {"seed", o.seed}};
 }
 
@@ -246,11 +248,30 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   return o;
 }
 
+// --fps, else the capture's recorded rate, else kDefaultFps (said on stderr).
+Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOptions* options) {
+  if (!fps.empty()) return ParseFrameRate(fps, &options->fps_num, &options->fps_den);
+  if (capture.fps_num > 0) {
+    options->fps_num = capture.fps_num;
+    options->fps_den = capture.fps_den;
+    return Status::Ok();
+  }
+  options->fps_num = kDefaultFps;
+  options->fps_den = 1;
+  std::fprintf(stderr, "%s records no frame rate: %u fps assumed (--fps to set it)\n",
+               capture.layout.c_str(), kDefaultFps);
+  return Status::Ok();
+}
+
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   EncoderOptions options;
   M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
+  uint32_t unused_num, unused_den;
+  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
+  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
 
   ProgressBar bar;
   bool header = true;
@@ -329,6 +350,9 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   AddCaptureArguments(cmd, &args->capture);
   AddEncoderOptions(cmd, args.get());
   cmd->add_option("-o,--output", args->output, "stream file")->capture_default_str();
+  cmd->add_option("--fps", args->fps,
+                  "frame rate written into the stream: 30, 29.97 or 30000/1001 (default: the "
+                  "capture's, else 30)");
   cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
   cmd->add_option("--views", args->views,
                   "write the held-out view, its decoded render and their difference (x4), one PNG "

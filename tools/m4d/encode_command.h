@@ -32,6 +32,7 @@ struct EncodeArguments {
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)
+  std::string fps;    // frame rate override ("30", "29.97", "30000/1001"); '' : the capture's
   // Frame -> model trained earlier, for --independent-frames (empty: train each frame).
   std::function<Status(int frame, GaussianModel* model)> keyframe_source;
 };

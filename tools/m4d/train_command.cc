@@ -32,6 +32,11 @@ struct TrainArguments {
 Status RunTrain(const TrainArguments& args) {
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  if (args.frame >= capture.frame_count) {
+    return Status(M4D_ERR_INVALID_ARG, "frame " + std::to_string(args.frame) + " but only " +
+                                           std::to_string(capture.frame_count) + " frames");
+  }
+  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, args.frame, 1));
   KeyframeTrainingOptions options = KeyframeTrainingOptions::Short();
   if (args.reference_schedule) options = KeyframeTrainingOptions::Reference();
   if (args.iterations > 0 && !args.reference_schedule) {
@@ -65,8 +70,8 @@ Status RunTrain(const TrainArguments& args) {
               1000.0 * seconds / options.iterations);
   std::printf("%-28s %.2f dB  SSIM %.4f\n", "training views", train_quality.mean_psnr,
               train_quality.mean_ssim);
-  if (capture.test_camera >= 0) {
-    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, {capture.test_camera}, &test));
+  if (!capture.test_cameras.empty()) {
+    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, capture.test_cameras, &test));
     M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &test_quality));
     std::printf("%-28s %.2f dB  SSIM %.4f\n", "held-out camera", test_quality.mean_psnr,
                 test_quality.mean_ssim);

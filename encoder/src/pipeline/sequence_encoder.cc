@@ -494,10 +494,10 @@ Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
                                  const GaussianSet& dynamic_set, FrameReport* report) {
   report->static_count = static_set.size();
   report->dynamic_count = dynamic_set.size();
-  if (capture_.test_camera < 0) return Status::Ok();
+  if (capture_.test_cameras.empty()) return Status::Ok();
   const Clock::time_point start = Clock::now();
   TrainingViews test;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, {capture_.test_camera}, &test));
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.test_cameras, &test));
   GaussianModel model;
   M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
   const RenderSettings settings = Settings();

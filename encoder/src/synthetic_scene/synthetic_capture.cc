@@ -58,7 +58,7 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
   result.frame_count = options.frames;
   result.camera_names = scene->camera_names();
   result.cameras.assign(options.frames, scene->cameras());
-  result.test_camera = options.cameras > 1 ? 0 : -1;
+  if (options.cameras > 1) result.test_cameras = {0};
   result.initial_points = scene->InitialPoints();
   result.frames = std::make_unique<MemoryFrameSource>(options.width, options.height,
                                                       options.cameras, std::move(views));
