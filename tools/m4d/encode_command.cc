@@ -76,6 +76,9 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "at most this many Gaussians after densification (keyframes and retraining; "
                   "default: the schedule's 1000000)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--random-init", a->random_init,
+                "without initial points, start the first keyframe uniform at random in the "
+                "cameras' box instead of from photo-consistent points");
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -210,6 +213,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_ply", args.keyframe_ply},
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
+          {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
           {"lambda", o.motion.rate_weight},
@@ -245,6 +249,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
                                   ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
                                   : args.encoder.keyframe;
   if (args.max_gaussians > 0) o.densification.max_gaussians = args.max_gaussians;
+  o.random_initialisation = args.random_init;
   return o;
 }
 

@@ -25,6 +25,7 @@ struct TrainArguments {
   int sh_degree = 3;
   int threads = 0;
   uint64_t seed = 1;
+  bool random_init = false;
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
@@ -43,6 +44,7 @@ Status RunTrain(const TrainArguments& args) {
     options = KeyframeTrainingOptions::Short(args.iterations);
   }
   options.sh_degree = args.sh_degree;
+  options.random_initialisation = args.random_init;
   options.threads = args.threads;
   options.seed = args.seed;
   const auto start = std::chrono::steady_clock::now();
@@ -100,6 +102,9 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       "train", "train one frame's 3D Gaussians (the keyframe stage) and report its quality");
   AddCaptureArguments(cmd, &args->capture);
   cmd->add_option("--frame", args->frame, "frame to train")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--random-init", args->random_init,
+                "without initial points, start uniform at random in the cameras' box (the "
+                "reference's way) instead of from photo-consistent points");
   cmd->add_option("--iterations", args->iterations,
                   "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);
