@@ -280,7 +280,7 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
     decoupling.seed = options_.seed + static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, decoupling.background);
     DecouplingResult result;
-    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, steps, gop.scene_extent, decoupling, &result));
+    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, views, steps, gop.scene_extent, decoupling, &result));
     static_model = std::move(result.static_model);
     dynamic_model = std::move(result.dynamic_model);
     gop.keyframe_report.seconds.decoupling = Since(start);
