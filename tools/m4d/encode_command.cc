@@ -120,6 +120,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "code a frame's compensation only when it raises the training views' PSNR by "
                   "this many dB (negative: always, as the paper)")
       ->capture_default_str();
+  cmd->add_option("--motion-min-gain", o.motion_min_gain,
+                  "code a frame's motion only when it raises the training views' PSNR by more "
+                  "than this many dB over showing the previous frame again (negative: always)")
+      ->capture_default_str();
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
       ->capture_default_str();
   cmd->add_option("--gop-psnr-drop", o.gop.max_psnr_drop,
@@ -228,6 +232,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"motion_views_per_step", o.motion.views_per_step},
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
+          {"motion_min_gain", o.motion_min_gain},
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},
           {"fixed_gop", o.gop.fixed_length},
           {"max_gop", o.gop.max_length},
