@@ -11,12 +11,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "dataset/capture_loader.h"
+#include "dataset/colmap_model.h"
+#include "dataset/lens_distortion.h"
 #include "dataset/npy_array.h"
 #include "dataset_test_util.h"
 #include "image/area_resize.h"
@@ -125,24 +128,15 @@ struct ColmapCameraSpec {
 ColmapCameraSpec Spec(const Camera& c, const char* model, std::vector<double> distortion = {}) {
   const std::string name = model;
   ColmapCameraSpec spec;
-  std::vector<double> params;
   if (name == "SIMPLE_PINHOLE" || name == "SIMPLE_RADIAL" || name == "RADIAL") {
-    params = {c.fx, c.cx, c.cy};
+    spec.params = {c.fx, c.cx, c.cy};
   } else {
-    params = {c.fx, c.fy, c.cx, c.cy};
+    spec.params = {c.fx, c.fy, c.cx, c.cy};
   }
-  params.insert(params.end(), distortion.begin(), distortion.end());
-  const char* names[] = {"SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL",
-                         "RADIAL",         "OPENCV",  "OPENCV_FISHEYE"};
-  for (int id = 0; id < 6; ++id) {
-    if (name == names[id]) spec.model_id = id;
-  }
-  spec.params = params;
+  spec.params.insert(spec.params.end(), distortion.begin(), distortion.end());
+  spec.model_id = ColmapModelId(name);
   return spec;
 }
-
-const char* kModelNames[] = {"SIMPLE_PINHOLE", "PINHOLE", "SIMPLE_RADIAL",
-                             "RADIAL",         "OPENCV",  "OPENCV_FISHEYE"};
 
 void Put(const void* p, size_t n, std::vector<uint8_t>* out) {
   const uint8_t* b = static_cast<const uint8_t*>(p);
@@ -174,7 +168,7 @@ void WriteColmap(const std::string& dir, const std::vector<Camera>& rig,
     Put<int32_t>(specs[c].model_id, &cameras);
     Put<uint64_t>(camera.width, &cameras);
     Put<uint64_t>(camera.height, &cameras);
-    std::snprintf(line, sizeof(line), "%d %s %d %d", 10 + c, kModelNames[specs[c].model_id],
+    std::snprintf(line, sizeof(line), "%d %s %d %d", 10 + c, ColmapModelName(specs[c].model_id),
                   camera.width, camera.height);
     cameras_txt += line;
     for (double p : specs[c].params) {
@@ -240,8 +234,7 @@ std::vector<ColmapCameraSpec> MixedSpecs(std::vector<Camera>* rig) {
   (*rig)[1].fy = (*rig)[1].fx;  // the one-focal-length models
   (*rig)[3].fy = (*rig)[3].fx;
   return {Spec((*rig)[0], "PINHOLE"), Spec((*rig)[1], "SIMPLE_PINHOLE"),
-          Spec((*rig)[2], "OPENCV", {0.01, -0.002, 0.0, 0.0}),
-          Spec((*rig)[3], "SIMPLE_RADIAL", {0})};
+          Spec((*rig)[2], "OPENCV", {0.0, 0.0, 0.0, 0.0}), Spec((*rig)[3], "SIMPLE_RADIAL", {0})};
 }
 
 // ---- N3DV -----------------------------------------------------------------------------
@@ -499,7 +492,7 @@ TEST(NerfstudioLoaderTest, LoadsStaticCapturesWithIntrinsicsOverride) {
   rig[1].cx = 21;
   rig[1].cy = 14;
   Json root = {{"w", kWidth},     {"h", kHeight},    {"fl_x", rig[0].fx}, {"fl_y", rig[0].fy},
-               {"cx", rig[0].cx}, {"cy", rig[0].cy}, {"k1", 0.01}};
+               {"cx", rig[0].cx}, {"cy", rig[0].cy}, {"k1", 0.0}};
   dir.Subdir("images");
   for (int c = 0; c < 3; ++c) {
     const std::string file = "images/view_" + std::to_string(c) + ".png";
@@ -529,7 +522,7 @@ TEST(NerfstudioLoaderTest, LoadsStaticCapturesWithIntrinsicsOverride) {
   EXPECT_EQ(capture.camera_names[2], "images/view_2.png");
   for (int c = 0; c < 3; ++c) ExpectSameCamera(capture.camera(0, c), rig[c], 1e-5);
   ExpectView(capture, 0, 1, ViewImage(40, 30, 0, 1), 0);
-  EXPECT_EQ(capture.notes.size(), 1u);  // k1 ignored
+  EXPECT_TRUE(capture.notes.empty());  // k1 = 0: pinhole cameras, nothing undistorted
   EXPECT_TRUE(capture.initial_points.positions.empty());
 }
 
@@ -566,9 +559,9 @@ TEST(NerfstudioLoaderTest, RejectsIncompleteAndMalformedFiles) {
   Json not_rigid = root;
   not_rigid["frames"][2]["transform_matrix"][0][0] = 3.0;
   EXPECT_EQ(load_with(not_rigid).code(), M4D_ERR_INVALID_ARG);
-  Json fisheye = root;
-  fisheye["camera_model"] = "OPENCV_FISHEYE";
-  EXPECT_EQ(load_with(fisheye).code(), M4D_ERR_UNSUPPORTED);
+  Json equirectangular = root;
+  equirectangular["camera_model"] = "EQUIRECTANGULAR";
+  EXPECT_EQ(load_with(equirectangular).code(), M4D_ERR_UNSUPPORTED);
   Json no_width = root;
   no_width.erase("w");
   EXPECT_EQ(load_with(no_width).code(), M4D_ERR_INVALID_ARG);
@@ -612,21 +605,29 @@ TEST(ColmapLoaderTest, BinaryAndTextGiveTheSameCapture) {
   EXPECT_EQ(binary.initial_points.positions, text.initial_points.positions);
   EXPECT_EQ(binary.initial_points.colors, text.initial_points.colors);
   ExpectSamePoints(binary.initial_points, points, 0.5 / 255 + 1e-6);
-  // OPENCV's distortion is dropped with a note; SIMPLE_RADIAL's k = 0 needs none.
-  ASSERT_EQ(binary.notes.size(), 1u);
-  EXPECT_NE(binary.notes[0].find("distortion"), std::string::npos);
-  EXPECT_EQ(text.notes, binary.notes);
+  // OPENCV and SIMPLE_RADIAL with zero coefficients are pinhole cameras: the images above
+  // are the files' exactly (no resampling), and there is nothing to note.
+  EXPECT_TRUE(binary.notes.empty());
+  EXPECT_TRUE(text.notes.empty());
 }
 
 TEST(ColmapLoaderTest, RejectsUnsupportedModelsAndBrokenFiles) {
   TempDir dir;
   std::vector<Camera> rig = Rig(2, kWidth, kHeight, false);
   rig[1].fy = rig[1].fx;
-  WriteColmap(dir.path(), rig,
-              {Spec(rig[0], "PINHOLE"), Spec(rig[1], "OPENCV_FISHEYE", {0, 0, 0, 0})}, SomePoints(),
+  WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "FOV", {0.1})}, SomePoints(),
               true);
   Capture capture;
-  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_UNSUPPORTED);
+  Status status = Load(dir.path(), &capture);
+  EXPECT_EQ(status.code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_NE(status.message().find("FOV"), std::string::npos) << status.message();
+  WriteColmap(
+      dir.path(), rig,
+      {Spec(rig[0], "PINHOLE"), Spec(rig[1], "THIN_PRISM_FISHEYE", std::vector<double>(8, 0.0))},
+      SomePoints(), true);
+  status = Load(dir.path(), &capture);
+  EXPECT_EQ(status.code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_NE(status.message().find("THIN_PRISM_FISHEYE"), std::string::npos) << status.message();
   WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "RADIAL", {0, 0})},
               SomePoints(), true);
   ASSERT_TRUE(Load(dir.path(), &capture).ok());
@@ -664,6 +665,265 @@ TEST(ColmapLoaderTest, RejectsUnsupportedModelsAndBrokenFiles) {
   // Images whose camera is missing.
   WriteText(cameras, "# nothing\n");
   EXPECT_EQ(Load(text.path(), &capture).code(), M4D_ERR_INVALID_ARG);
+}
+
+// ---- Lens distortion ------------------------------------------------------------------
+
+// A smooth colour per ray, given by its normalised pinhole coordinates (x, y) = (X/Z, Y/Z).
+void Pattern(double x, double y, float rgb[3]) {
+  rgb[0] = static_cast<float>(0.5 + 0.4 * std::sin(9 * x) * std::cos(7 * y));
+  rgb[1] = static_cast<float>(0.5 + 0.4 * std::cos(11 * x + 3 * y));
+  rgb[2] = static_cast<float>(0.5 + 0.3 * std::sin(5 * x * y + 8 * y));
+}
+
+// The pattern as a pinhole camera sees it.
+Image PinholePattern(const Camera& c) {
+  Image image(c.width, c.height, 3);
+  for (int j = 0; j < c.height; ++j) {
+    for (int i = 0; i < c.width; ++i)
+      Pattern((i + 0.5 - c.cx) / c.fx, (j + 0.5 - c.cy) / c.fy, &image.at(i, j, 0));
+  }
+  return image;
+}
+
+// The pattern through a lens, quantised to 8 bits: each pixel shows the ray whose distorted
+// position it is, found by fixed-point iteration on the forward model (not the loaders'
+// inverse).
+Image DistortedPattern(const Camera& c, const LensDistortion& lens) {
+  Image image(c.width, c.height, 3);
+  for (int j = 0; j < c.height; ++j) {
+    for (int i = 0; i < c.width; ++i) {
+      const double xd = (i + 0.5 - c.cx) / c.fx, yd = (j + 0.5 - c.cy) / c.fy;
+      double x = xd, y = yd, u = 0, v = 0;
+      for (int step = 0; step < 300; ++step) {
+        Distort(lens, x, y, &u, &v);
+        x += xd - u;
+        y += yd - v;
+      }
+      EXPECT_LT(std::hypot(u - xd, v - yd), 1e-9) << i << " " << j;
+      float rgb[3];
+      Pattern(x, y, rgb);
+      for (int a = 0; a < 3; ++a) image.at(i, j, a) = ByteToFloat(FloatToByte(rgb[a]));
+    }
+  }
+  return image;
+}
+
+// PSNR of a loaded view against `expected` over the pixels at least 3 away from the border.
+double InnerPsnr(const Image& image, const Image& expected) {
+  Image mask(image.width, image.height, 1, 0.0f);
+  for (int j = 3; j < image.height - 3; ++j) {
+    for (int i = 3; i < image.width - 3; ++i) mask.at(i, j, 0) = 1;
+  }
+  double psnr = 0;
+  EXPECT_TRUE(PsnrMasked(image, expected, mask, &psnr).ok());
+  return psnr;
+}
+
+constexpr int kLensWidth = 160, kLensHeight = 120;
+
+struct LensCase {
+  const char* colmap_model;
+  LensDistortion lens;
+  std::vector<double> params;  // the COLMAP distortion parameters, in COLMAP's order
+};
+
+LensDistortion MakeLens(LensModel model, std::vector<double> k, double p1 = 0, double p2 = 0) {
+  LensDistortion lens;
+  lens.model = model;
+  std::copy(k.begin(), k.end(), lens.k);
+  lens.p1 = p1;
+  lens.p2 = p2;
+  return lens;
+}
+
+// One camera per COLMAP model with distortion, then a pinhole one.
+std::vector<LensCase> LensCases() {
+  return {{"OPENCV",
+           MakeLens(LensModel::kOpenCv, {-0.25, 0.06}, 0.001, -0.0015),
+           {-0.25, 0.06, 0.001, -0.0015}},
+          {"OPENCV_FISHEYE",
+           MakeLens(LensModel::kFisheye, {0.06, -0.02, 0.01, -0.004}),
+           {0.06, -0.02, 0.01, -0.004}},
+          {"FULL_OPENCV",
+           MakeLens(LensModel::kFullOpenCv, {-0.2, 0.05, 0, 0.1}, 0.002, 0.001),
+           {-0.2, 0.05, 0.002, 0.001, 0, 0.1, 0, 0}},
+          {"RADIAL", MakeLens(LensModel::kRadial, {-0.2, 0.03}), {-0.2, 0.03}},
+          {"SIMPLE_RADIAL", MakeLens(LensModel::kRadial, {0.22}), {0.22}},
+          {"PINHOLE", LensDistortion(), {}}};
+}
+
+// A rig of LensCases().size() cameras with lens-like intrinsics (fy = fx for the models with
+// one focal length).
+std::vector<Camera> LensRig(const std::vector<LensCase>& cases) {
+  std::vector<Camera> rig = Rig(static_cast<int>(cases.size()), kLensWidth, kLensHeight, false);
+  for (size_t c = 0; c < rig.size(); ++c) {
+    rig[c].fx = 100.0f + 4 * c;
+    rig[c].fy = cases[c].colmap_model[0] == 'O' || cases[c].colmap_model[0] == 'F' ? rig[c].fx + 2
+                                                                                   : rig[c].fx;
+    rig[c].cx = 80.5f - c;
+    rig[c].cy = 59.25f + 0.5f * c;
+  }
+  return rig;
+}
+
+// The views of `capture` (from LensRig(cases) written with distorted patterns) are the
+// pattern as their pinhole cameras see it, the poses are the rig's, the distorted views have
+// new intrinsics, and the pinhole view is the file as written.
+void ExpectUndistortedViews(const Capture& capture, const std::vector<Camera>& rig,
+                            const std::vector<LensCase>& cases, const std::vector<Image>& written,
+                            int downscale, double min_psnr) {
+  ASSERT_EQ(capture.camera_count(), static_cast<int>(rig.size()));
+  for (int c = 0; c < capture.camera_count(); ++c) {
+    const Camera& camera = capture.camera(0, c);
+    EXPECT_EQ(camera.width, kLensWidth / downscale);
+    EXPECT_EQ(camera.height, kLensHeight / downscale);
+    for (int i = 0; i < 9; ++i) EXPECT_NEAR(camera.rotation[i], rig[c].rotation[i], 1e-5);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(camera.translation[i], rig[c].translation[i], 1e-5);
+    Image image;
+    ASSERT_TRUE(capture.LoadImage(0, c, &image).ok());
+    ASSERT_EQ(image.width, camera.width);
+    ASSERT_EQ(image.height, camera.height);
+    if (!HasDistortion(cases[c].lens)) {
+      EXPECT_EQ(camera.fx * downscale, rig[c].fx);
+      if (downscale == 1) {
+        EXPECT_EQ(image.pixels, written[c].pixels);
+      }
+      continue;
+    }
+    EXPECT_GT(std::fabs(camera.fx * downscale - rig[c].fx), 0.5) << cases[c].colmap_model;
+    const double psnr = InnerPsnr(image, PinholePattern(camera));
+    EXPECT_GT(psnr, min_psnr) << cases[c].colmap_model;
+    // The files themselves, read as pinhole images, are far from it: the test can fail.
+    if (downscale == 1) {
+      EXPECT_LT(InnerPsnr(written[c], PinholePattern(rig[c])), 30) << cases[c].colmap_model;
+    }
+  }
+}
+
+TEST(LensUndistortionTest, ColmapCamerasAreUndistortedToPinholes) {
+  TempDir dir;
+  const std::vector<LensCase> cases = LensCases();
+  const std::vector<Camera> rig = LensRig(cases);
+  std::vector<ColmapCameraSpec> specs;
+  for (size_t c = 0; c < rig.size(); ++c)
+    specs.push_back(Spec(rig[c], cases[c].colmap_model, cases[c].params));
+  WriteColmap(dir.path(), rig, specs, SomePoints(), false);
+  std::vector<Image> written;
+  for (size_t c = 0; c < rig.size(); ++c) {
+    written.push_back(DistortedPattern(rig[c], cases[c].lens));
+    ASSERT_TRUE(
+        WritePng(dir.path() + "/images/view_" + std::to_string(c) + ".png", written.back()).ok());
+  }
+  Capture capture;
+  Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectUndistortedViews(capture, rig, cases, written, 1, 45);
+  ASSERT_EQ(capture.notes.size(), 1u);
+  const std::string& note = capture.notes[0];
+  EXPECT_EQ(note.find("colmap: 5 of 6 cameras undistorted (FULL_OPENCV, OPENCV, OPENCV_FISHEYE, "
+                      "RADIAL) to pinhole"),
+            0u)
+      << note;
+  // Downscaling comes after undistortion: the halved pinhole cameras, area-averaged images.
+  Capture half;
+  CaptureOptions options;
+  options.downscale = 2;
+  status = Load(dir.path(), &half, options);
+  ASSERT_TRUE(status.ok()) << status.message();
+  for (int c = 0; c < capture.camera_count(); ++c) {
+    EXPECT_NEAR(half.camera(0, c).fx, capture.camera(0, c).fx / 2, 1e-4);
+    EXPECT_NEAR(half.camera(0, c).cx, capture.camera(0, c).cx / 2, 1e-4);
+  }
+  ExpectUndistortedViews(half, rig, cases, written, 2, 40);
+}
+
+TEST(LensUndistortionTest, NerfstudioViewsAreUndistortedToPinholes) {
+  TempDir dir;
+  // Shared OPENCV k1, k2, k3, p1, p2; view 1 overrides with OPENCV_FISHEYE k1..k4, view 2 is
+  // a pinhole.
+  const std::vector<LensCase> all = LensCases();
+  const std::vector<LensCase> cases = {
+      {"OPENCV", MakeLens(LensModel::kOpenCv, {-0.25, 0.06, 0.01}, 0.001, -0.0015), {}},
+      all[1],
+      all.back()};
+  std::vector<Camera> rig = LensRig(cases);
+  Json root = {{"camera_model", "OPENCV"},
+               {"w", kLensWidth},
+               {"h", kLensHeight},
+               {"k1", -0.25},
+               {"k2", 0.06},
+               {"k3", 0.01},
+               {"p1", 0.001},
+               {"p2", -0.0015}};
+  std::vector<Image> written;
+  for (int c = 0; c < 3; ++c) {
+    const std::string file = "v" + std::to_string(c) + ".png";
+    written.push_back(DistortedPattern(rig[c], cases[c].lens));
+    ASSERT_TRUE(WritePng(dir.path() + "/" + file, written.back()).ok());
+    Json entry = FrameEntry(rig[c], file);
+    if (c == 1) {
+      entry.update({{"camera_model", "OPENCV_FISHEYE"},
+                    {"k1", 0.06},
+                    {"k2", -0.02},
+                    {"k3", 0.01},
+                    {"k4", -0.004},
+                    {"p1", 0},
+                    {"p2", 0}});
+    }
+    if (c == 2) {
+      entry.update(
+          {{"camera_model", "PINHOLE"}, {"k1", 0}, {"k2", 0}, {"k3", 0}, {"p1", 0}, {"p2", 0}});
+    }
+    root["frames"].push_back(entry);
+  }
+  WriteText(dir.path() + "/transforms.json", root.dump());
+  Capture capture;
+  const Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectUndistortedViews(capture, rig, cases, written, 1, 45);
+  ASSERT_EQ(capture.notes.size(), 1u);
+  EXPECT_EQ(capture.notes[0].find(
+                "nerfstudio: 2 of 3 cameras undistorted (OPENCV, OPENCV_FISHEYE) to pinhole"),
+            0u)
+      << capture.notes[0];
+}
+
+TEST(LensUndistortionTest, LoadersRefuseDistortionTheyCannotUndistort) {
+  TempDir dir;
+  std::vector<Camera> rig = LensRig({LensCases()[0], LensCases()[0]});
+  Capture capture;
+  // Too strong: k1 = -0.9 folds over inside the image.
+  WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "OPENCV", {-0.9, 0, 0, 0})},
+              SomePoints(), false);
+  Status status = Load(dir.path(), &capture);
+  EXPECT_EQ(status.code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_NE(status.message().find("'view_1.png'"), std::string::npos) << status.message();
+  // Not a number: the model parsers refuse it before undistortion.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  WriteColmap(dir.path(), rig, {Spec(rig[0], "PINHOLE"), Spec(rig[1], "OPENCV", {0.1, nan, 0, 0})},
+              SomePoints(), true);
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_BITSTREAM);
+  // transforms.json: too strong, coefficients of another model, an unknown model.
+  TempDir nerfstudio;
+  ASSERT_TRUE(
+      WritePng(nerfstudio.path() + "/v.png", ViewImage(kLensWidth, kLensHeight, 0, 0)).ok());
+  const Json base = {
+      {"w", kLensWidth}, {"h", kLensHeight}, {"frames", {FrameEntry(rig[0], "v.png")}}};
+  auto load_with = [&](const Json& extra) {
+    Json root = base;
+    root.update(extra);
+    WriteText(nerfstudio.path() + "/transforms.json", root.dump());
+    return Load(nerfstudio.path(), &capture);
+  };
+  ASSERT_TRUE(load_with({{"k1", 0.05}}).ok());
+  status = load_with({{"k1", -0.9}});
+  EXPECT_EQ(status.code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_NE(status.message().find("'v.png'"), std::string::npos) << status.message();
+  EXPECT_EQ(load_with({{"k4", 0.01}}).code(), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(load_with({{"camera_model", "OPENCV_FISHEYE"}, {"p1", 0.01}}).code(),
+            M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(load_with({{"camera_model", "FISHEYE624"}}).code(), M4D_ERR_UNSUPPORTED);
 }
 
 // ---- Dynamic 3D Gaussians -------------------------------------------------------------------

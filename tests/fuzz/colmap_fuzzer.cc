@@ -1,6 +1,6 @@
 // libFuzzer target for COLMAP's binary model files: the first byte picks cameras.bin,
 // images.bin or points3D.bin, the rest is the file. Parsing must fail cleanly or give
-// records that match their declared sizes; cameras are converted to pinhole intrinsics.
+// records that match their declared sizes; cameras are converted to intrinsics and lens distortion.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -20,8 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         std::abort();
       }
       double fx, fy, cx, cy;
-      bool distorted;
-      (void)m4d::ColmapPinhole(camera, &fx, &fy, &cx, &cy, &distorted);
+      m4d::LensDistortion distortion;
+      (void)m4d::ColmapIntrinsics(camera, &fx, &fy, &cx, &cy, &distortion);
     }
   } else if (which == 1) {
     std::vector<m4d::ColmapImage> images;

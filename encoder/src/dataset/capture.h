@@ -38,7 +38,7 @@ struct Capture {
   uint32_t fps_num = 0, fps_den = 1;
   PointCloud initial_points;  // may be empty: initialise in the cameras' common view
   std::unique_ptr<FrameSource> frames;
-  std::vector<std::string> notes;  // what the loader approximated, e.g. ignored lens distortion
+  std::vector<std::string> notes;  // what the loader changed, e.g. undistorted cameras
 
   int camera_count() const { return static_cast<int>(camera_names.size()); }
   const Camera& camera(int frame, int index) const { return cameras[frame][index]; }

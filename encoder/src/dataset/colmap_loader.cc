@@ -6,6 +6,7 @@
 
 #include "dataset/file_listing.h"
 #include "dataset/image_file_source.h"
+#include "dataset/undistorting_frame_source.h"
 
 namespace m4d {
 
@@ -17,9 +18,9 @@ std::string FindColmapModelDir(const std::string& dir) {
 }
 
 Status ColmapImageCamera(const ColmapCamera& intrinsics, const ColmapImage& image, Camera* camera,
-                         bool* distorted) {
+                         LensDistortion* distortion) {
   double fx, fy, cx, cy;
-  M4D_RETURN_IF_ERROR(ColmapPinhole(intrinsics, &fx, &fy, &cx, &cy, distorted));
+  M4D_RETURN_IF_ERROR(ColmapIntrinsics(intrinsics, &fx, &fy, &cx, &cy, distortion));
   if (intrinsics.width < 1 || intrinsics.height < 1 || intrinsics.width > kMaxImageSide ||
       intrinsics.height > kMaxImageSide) {
     return Status(M4D_ERR_INVALID_ARG, "colmap: camera size out of range");
@@ -62,7 +63,7 @@ Status LoadColmap(const std::string& dir, const CaptureOptions& options, Capture
   capture->frame_count = 1;
   capture->cameras.resize(1);
   std::vector<std::vector<std::string>> paths(1);
-  bool distorted = false;
+  std::vector<std::vector<LensDistortion>> distortions(1);
   for (size_t i = 0; i < model.images.size(); ++i) {
     const ColmapImage& image = model.images[i];
     if (i > 0 && image.name == model.images[i - 1].name) {
@@ -73,16 +74,16 @@ Status LoadColmap(const std::string& dir, const CaptureOptions& options, Capture
       return Status(M4D_ERR_INVALID_ARG, "colmap: image '" + image.name + "' has no camera");
     }
     Camera camera;
-    bool image_distorted = false;
-    M4D_RETURN_IF_ERROR(ColmapImageCamera(*found->second, image, &camera, &image_distorted));
-    distorted |= image_distorted;
+    LensDistortion distortion;
+    M4D_RETURN_IF_ERROR(ColmapImageCamera(*found->second, image, &camera, &distortion));
     capture->camera_names.push_back(image.name);
     capture->cameras[0].push_back(camera);
+    distortions[0].push_back(distortion);
     paths[0].push_back(dir + "/images/" + image.name);
   }
-  if (distorted) capture->notes.push_back("colmap: lens distortion ignored");
   capture->initial_points = std::move(model.points);
   capture->frames = std::make_unique<ImageFileSource>(std::move(paths), capture->cameras);
+  M4D_RETURN_IF_ERROR(UndistortCapture(distortions, capture));
   return ApplyCaptureOptions(options, capture);
 }
 

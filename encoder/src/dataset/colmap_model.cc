@@ -35,8 +35,34 @@ enum ModelId {
   kSimpleRadial = 2,
   kRadial = 3,
   kOpenCv = 4,
+  kOpenCvFisheye = 5,
   kFullOpenCv = 6
 };
+
+// The lens model and where its coefficients sit in COLMAP's parameter list: k1..k6, p1, p2
+// (-1: not a parameter of the model).
+struct LensLayout {
+  LensModel model;
+  int k[6];
+  int p1, p2;
+};
+
+LensLayout ColmapLensLayout(int model_id) {
+  switch (model_id) {
+    case kSimpleRadial:  // f, cx, cy, k
+      return {LensModel::kRadial, {3, -1, -1, -1, -1, -1}, -1, -1};
+    case kRadial:  // f, cx, cy, k1, k2
+      return {LensModel::kRadial, {3, 4, -1, -1, -1, -1}, -1, -1};
+    case kOpenCv:  // fx, fy, cx, cy, k1, k2, p1, p2
+      return {LensModel::kOpenCv, {4, 5, -1, -1, -1, -1}, 6, 7};
+    case kOpenCvFisheye:  // fx, fy, cx, cy, k1, k2, k3, k4
+      return {LensModel::kFisheye, {4, 5, 6, 7, -1, -1}, -1, -1};
+    case kFullOpenCv:  // fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6
+      return {LensModel::kFullOpenCv, {4, 5, 8, 9, 10, 11}, 6, 7};
+    default:  // the pinhole models
+      return {LensModel::kNone, {-1, -1, -1, -1, -1, -1}, -1, -1};
+  }
+}
 
 bool Exists(const std::string& path) {
   std::error_code error;
@@ -78,14 +104,13 @@ int ColmapModelId(const std::string& name) {
   return -1;
 }
 
-Status ColmapPinhole(const ColmapCamera& camera, double* fx, double* fy, double* cx, double* cy,
-                     bool* distorted) {
+Status ColmapIntrinsics(const ColmapCamera& camera, double* fx, double* fy, double* cx, double* cy,
+                        LensDistortion* distortion) {
   const std::vector<double>& p = camera.params;
   if (static_cast<int>(p.size()) != ColmapModelParamCount(camera.model_id)) {
     return Status(M4D_ERR_INVALID_ARG, "colmap: camera parameter count does not match its model");
   }
   // Models with one focal length list f, cx, cy first; the others fx, fy, cx, cy.
-  size_t first_distortion;
   switch (camera.model_id) {
     case kSimplePinhole:
     case kSimpleRadial:
@@ -93,24 +118,27 @@ Status ColmapPinhole(const ColmapCamera& camera, double* fx, double* fy, double*
       *fx = *fy = p[0];
       *cx = p[1];
       *cy = p[2];
-      first_distortion = 3;
       break;
     case kPinhole:
     case kOpenCv:
+    case kOpenCvFisheye:
     case kFullOpenCv:
       *fx = p[0];
       *fy = p[1];
       *cx = p[2];
       *cy = p[3];
-      first_distortion = 4;
       break;
     default:
       return Status(M4D_ERR_UNSUPPORTED, std::string("colmap: camera model ") +
                                              ColmapModelName(camera.model_id) +
-                                             " (need a pinhole or OpenCV-style model)");
+                                             " (need a pinhole, radial or OpenCV model)");
   }
-  *distorted = false;
-  for (size_t i = first_distortion; i < p.size(); ++i) *distorted |= p[i] != 0.0;
+  const LensLayout layout = ColmapLensLayout(camera.model_id);
+  *distortion = LensDistortion();
+  distortion->model = layout.model;
+  for (int i = 0; i < 6; ++i) distortion->k[i] = layout.k[i] < 0 ? 0 : p[layout.k[i]];
+  distortion->p1 = layout.p1 < 0 ? 0 : p[layout.p1];
+  distortion->p2 = layout.p2 < 0 ? 0 : p[layout.p2];
   return Status::Ok();
 }
 

@@ -1,5 +1,5 @@
 // COLMAP sparse models (cameras, images, points3D) as COLMAP writes them, in its binary
-// (.bin) or text (.txt) form, and the pinhole intrinsics of its camera models.
+// (.bin) or text (.txt) form, and the intrinsics and lens distortion of its camera models.
 #ifndef M4D_ENCODER_DATASET_COLMAP_MODEL_H_
 #define M4D_ENCODER_DATASET_COLMAP_MODEL_H_
 
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "dataset/lens_distortion.h"
 #include "dataset/point_cloud.h"
 
 namespace m4d {
@@ -43,11 +44,11 @@ int ColmapModelParamCount(int model_id);
 // The id of a model name, or -1.
 int ColmapModelId(const std::string& name);
 
-// Pinhole intrinsics of SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV and
-// FULL_OPENCV cameras; *distorted tells whether nonzero distortion terms were dropped.
-// M4D_ERR_UNSUPPORTED for fisheye and other models.
-Status ColmapPinhole(const ColmapCamera& camera, double* fx, double* fy, double* cx, double* cy,
-                     bool* distorted);
+// Intrinsics of SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, OPENCV_FISHEYE and
+// FULL_OPENCV cameras: focal lengths, principal point and lens distortion (model kNone for
+// the pinhole models). M4D_ERR_UNSUPPORTED naming any other model.
+Status ColmapIntrinsics(const ColmapCamera& camera, double* fx, double* fy, double* cx, double* cy,
+                        LensDistortion* distortion);
 
 // Reads cameras, images and (when with_points) points3D from `dir`, each from its .bin file
 // if there is one, else from its .txt file.

@@ -9,6 +9,7 @@
 
 #include "dataset/file_listing.h"
 #include "dataset/image_file_source.h"
+#include "dataset/undistorting_frame_source.h"
 #include "image/file_bytes.h"
 #include "ply/point_cloud_ply.h"
 
@@ -24,7 +25,7 @@ struct View {
   std::string file_path;
   double pose[16] = {};
   Camera camera;
-  bool distorted = false;
+  LensDistortion distortion;
   bool has_camera = false, has_time_index = false, has_time = false;
   std::string camera_name;
   double time = 0;  // time_index or time, whichever orders frames
@@ -67,16 +68,35 @@ Status ParseSize(const Json& shared, const Json& entry, const char* key, int* si
   return Status::Ok();
 }
 
-Status ParseIntrinsics(const Json& shared, const Json& entry, View* view) {
+// nerfstudio's OPENCV (also taken for PINHOLE, SIMPLE_PINHOLE or no camera_model) has radial
+// k1, k2, k3 and tangential p1, p2; OPENCV_FISHEYE has k1..k4.
+Status ParseDistortion(const Json& shared, const Json& entry, LensDistortion* distortion) {
   const Json* model = entry.contains("camera_model")    ? &entry["camera_model"]
                       : shared.contains("camera_model") ? &shared["camera_model"]
                                                         : nullptr;
-  if (model) {
-    const std::string name = model->is_string() ? model->get<std::string>() : "";
-    if (name != "OPENCV" && name != "PINHOLE" && name != "SIMPLE_PINHOLE") {
-      return Status(M4D_ERR_UNSUPPORTED, "transforms.json: camera_model '" + name + "'");
+  const std::string name = !model ? "OPENCV" : model->is_string() ? model->get<std::string>() : "";
+  const bool fisheye = name == "OPENCV_FISHEYE";
+  if (!fisheye && name != "OPENCV" && name != "PINHOLE" && name != "SIMPLE_PINHOLE") {
+    return Status(M4D_ERR_UNSUPPORTED, "transforms.json: camera_model '" + name + "'");
+  }
+  distortion->model = fisheye ? LensModel::kFisheye : LensModel::kOpenCv;
+  double* targets[6] = {&distortion->k[0], &distortion->k[1], &distortion->k[2],
+                        &distortion->k[3], &distortion->p1,   &distortion->p2};
+  const char* keys[6] = {"k1", "k2", "k3", "k4", "p1", "p2"};
+  for (int i = 0; i < 6; ++i) {
+    bool present;
+    M4D_RETURN_IF_ERROR(LookupNumber(shared, entry, keys[i], &present, targets[i]));
+    const bool unused = fisheye ? i >= 4 : i == 3;
+    if (present && unused && *targets[i] != 0.0) {
+      return Status(M4D_ERR_UNSUPPORTED, std::string("transforms.json: '") + keys[i] +
+                                             "' with camera_model '" + name + "'");
     }
   }
+  return Status::Ok();
+}
+
+Status ParseIntrinsics(const Json& shared, const Json& entry, View* view) {
+  M4D_RETURN_IF_ERROR(ParseDistortion(shared, entry, &view->distortion));
   Camera& camera = view->camera;
   M4D_RETURN_IF_ERROR(ParseSize(shared, entry, "w", &camera.width));
   M4D_RETURN_IF_ERROR(ParseSize(shared, entry, "h", &camera.height));
@@ -96,11 +116,6 @@ Status ParseIntrinsics(const Json& shared, const Json& entry, View* view) {
   camera.fy = static_cast<float>(fy);
   camera.cx = static_cast<float>(cx);
   camera.cy = static_cast<float>(cy);
-  for (const char* key : {"k1", "k2", "k3", "k4", "p1", "p2"}) {
-    double k = 0;
-    M4D_RETURN_IF_ERROR(LookupNumber(shared, entry, key, &present, &k));
-    view->distorted |= present && k != 0.0;
-  }
   return Status::Ok();
 }
 
@@ -280,14 +295,15 @@ Status Load(const std::string& path, Capture* capture) {
   capture->cameras.assign(capture->frame_count, std::vector<Camera>(cameras));
   std::vector<std::vector<std::string>> paths(capture->frame_count,
                                               std::vector<std::string>(cameras));
-  bool distorted = false;
+  std::vector<std::vector<LensDistortion>> distortions(capture->frame_count,
+                                                       std::vector<LensDistortion>(cameras));
   for (View& view : views) {
     capture->cameras[view.frame][view.camera_index] = view.camera;
     paths[view.frame][view.camera_index] = ResolvePath(dir, view.file_path);
-    distorted |= view.distorted;
+    distortions[view.frame][view.camera_index] = view.distortion;
   }
-  if (distorted) capture->notes.push_back("transforms.json: lens distortion ignored");
   capture->frames = std::make_unique<ImageFileSource>(std::move(paths), capture->cameras);
+  M4D_RETURN_IF_ERROR(UndistortCapture(distortions, capture));
   if (root.contains("ply_file_path")) {
     if (!root["ply_file_path"].is_string()) return Invalid("'ply_file_path' must be a string");
     M4D_RETURN_IF_ERROR(ReadPointCloudPly(

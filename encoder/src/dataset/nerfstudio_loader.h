@@ -1,12 +1,14 @@
 // Loader for nerfstudio-style transforms.json captures, static or multi-view video.
 //
-// Shared keys: camera_model (OPENCV, PINHOLE or SIMPLE_PINHOLE; distortion coefficients
-// k1..k4, p1, p2 are ignored with a note), w, h, fl_x, fl_y (default fl_x), cx, cy (default
-// w / 2, h / 2), ply_file_path (initial points, see point_cloud_ply.h). Each entry of
-// "frames" has file_path (relative to the file's directory), transform_matrix (camera-to-
-// world, OpenGL axes: x right, y up, z back) and may override any intrinsic. Extensions
-// for video: "camera" names the physical camera, "time_index" the frame (else "time", the
-// sorted distinct values giving frame numbers).
+// Shared keys: camera_model (OPENCV, PINHOLE, SIMPLE_PINHOLE: distortion k1, k2, k3, p1, p2;
+// OPENCV_FISHEYE: k1..k4), w, h, fl_x, fl_y (default fl_x), cx, cy (default w / 2, h / 2),
+// ply_file_path (initial points, see point_cloud_ply.h). Views with distortion are
+// undistorted to pinhole cameras of the same image size (noted in Capture::notes). Each
+// entry of "frames" has file_path (relative to the file's directory), transform_matrix
+// (camera-to-world, OpenGL axes: x right, y up, z back) and may override any intrinsic,
+// camera_model and distortion coefficients included. Extensions for video: "camera" names
+// the physical camera, "time_index" the frame (else "time", the sorted distinct values
+// giving frame numbers).
 //
 // Grouping: views belong to cameras by "camera" when present, else (video) by identical
 // transform and intrinsics, named after their first frame's file_path, else (static, one
