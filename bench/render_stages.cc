@@ -119,7 +119,7 @@ bool ReadStream(const std::string& path, int frames, Packets* packets) {
 bool CaptureCamera(const Options& o, M4dRenderCamera* c) {
   m4d::Capture capture;
   if (!m4d::LoadCapture(o.capture, m4d::CaptureOptions(), &capture).ok()) return false;
-  const int index = o.camera >= 0 ? o.camera : std::max(capture.test_camera, 0);
+  const int index = o.camera >= 0 ? o.camera : std::max(capture.FirstTestCamera(), 0);
   if (capture.cameras.empty() || index >= static_cast<int>(capture.cameras[0].size())) {
     return false;
   }

@@ -310,7 +310,8 @@ TEST(N3dvLoaderTest, DecodesVideos) {
   EXPECT_EQ(capture.layout, "n3dv");
   EXPECT_EQ(capture.frame_count, 5);
   EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"cam00", "cam01"}));
-  EXPECT_EQ(capture.test_camera, 0);
+  EXPECT_EQ(capture.test_cameras, (std::vector<int>{0}));
+  EXPECT_EQ(capture.fps_num, 30u);
   EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{1}));
   for (int f = 0; f < 5; ++f) {
     for (int c = 0; c < 2; ++c) ExpectSameCamera(capture.camera(f, c), rig[c], 1e-5);
@@ -992,6 +993,91 @@ TEST(Dynamic3dgsLoaderTest, LoadsMetaImagesAndPoints) {
   }
 }
 
+// test_meta.json with one held-out camera (id 7, the rig's camera 0 seen again) whose images
+// are named per frame in `fn`.
+void WriteTestMeta(const std::string& dir, const Camera& camera, int frames, int id = 7) {
+  Json root = {{"w", kWidth}, {"h", kHeight}};
+  for (const char* key : {"k", "w2c", "fn", "cam_id"}) root[key] = Json::array();
+  const std::string folder = "held_out_" + std::to_string(id);
+  std::filesystem::create_directories(dir + "/ims/" + folder);
+  for (int t = 0; t < frames; ++t) {
+    const float* r = camera.rotation;
+    const float* tr = camera.translation;
+    root["k"].push_back(Json::array(
+        {Json::array({Json::array({camera.fx, 0.0, camera.cx}),
+                      Json::array({0.0, camera.fy, camera.cy}), Json::array({0.0, 0.0, 1.0})})}));
+    root["w2c"].push_back(Json::array({Json::array(
+        {Json::array({r[0], r[1], r[2], tr[0]}), Json::array({r[3], r[4], r[5], tr[1]}),
+         Json::array({r[6], r[7], r[8], tr[2]}), Json::array({0, 0, 0, 1})})}));
+    const std::string file = folder + "/view_" + std::to_string(100 + t) + ".jpg";
+    EXPECT_TRUE(WriteJpeg(dir + "/ims/" + file, ViewImage(kWidth, kHeight, t, 5), 95).ok());
+    root["fn"].push_back(Json::array({file}));
+    root["cam_id"].push_back(Json::array({id}));
+  }
+  WriteText(dir + "/test_meta.json", root.dump());
+}
+
+TEST(Dynamic3dgsLoaderTest, TestMetaCamerasAreHeldOut) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+  WriteDynamic3dgs(dir.path(), rig, 2, ZipMethod::kStored);
+  WriteTestMeta(dir.path(), rig[0], 2);
+  Capture capture;
+  Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(capture.camera_names, (std::vector<std::string>{"0", "2", "4", "7"}));
+  EXPECT_EQ(capture.test_cameras, (std::vector<int>{3}));
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{0, 1, 2}));
+  for (int f = 0; f < 2; ++f) {
+    ExpectSameCamera(capture.camera(f, 3), rig[0], 1e-6);
+    ExpectView(capture, f, 3, ViewImage(kWidth, kHeight, f, 5), 30);  // its own `fn` per frame
+  }
+  // An explicit choice replaces them; the layout's held-out camera then trains.
+  CaptureOptions options;
+  options.test_camera = 1;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{0, 2, 3}));
+  options.test_camera = -1;
+  ASSERT_TRUE(Load(dir.path(), &capture, options).ok());
+  EXPECT_TRUE(capture.test_cameras.empty());
+  // A frame count or a camera id that contradicts train_meta.json.
+  WriteTestMeta(dir.path(), rig[0], 1);
+  status = Load(dir.path(), &capture);
+  EXPECT_EQ(status.code(), M4D_ERR_INVALID_ARG);
+  EXPECT_NE(status.message().find("test_meta.json"), std::string::npos) << status.message();
+  WriteTestMeta(dir.path(), rig[0], 2, 2);
+  EXPECT_EQ(Load(dir.path(), &capture).code(), M4D_ERR_INVALID_ARG);
+}
+
+// A left-handed calibration: the rig and points seen in the world mirrored by x -> -x, which
+// makes every world-to-camera rotation's determinant -1. Loading mirrors it back.
+TEST(Dynamic3dgsLoaderTest, LeftHandedCalibrationIsMirrored) {
+  TempDir dir;
+  const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
+  std::vector<Camera> mirrored = rig;
+  for (Camera& camera : mirrored) {
+    for (int r = 0; r < 3; ++r) camera.rotation[3 * r] *= -1.0f;
+  }
+  WriteDynamic3dgs(dir.path(), mirrored, 2, ZipMethod::kStored);
+  Capture capture;
+  Status status = Load(dir.path(), &capture);
+  ASSERT_TRUE(status.ok()) << status.message();
+  for (int f = 0; f < 2; ++f) {
+    for (int c = 0; c < 3; ++c) ExpectSameCamera(capture.camera(f, c), rig[c], 1e-6);
+  }
+  PointCloud expected = SomePoints();
+  for (size_t i = 0; i < expected.size(); ++i) expected.positions[3 * i] *= -1.0f;
+  ExpectSamePoints(capture.initial_points, expected, 1e-7);
+  ASSERT_FALSE(capture.notes.empty());
+  EXPECT_NE(capture.notes.back().find("left-handed"), std::string::npos);
+  // One camera right-handed among left-handed ones: no single world, named in the error.
+  mirrored[1] = rig[1];
+  WriteDynamic3dgs(dir.path(), mirrored, 2, ZipMethod::kStored);
+  status = Load(dir.path(), &capture);
+  EXPECT_EQ(status.code(), M4D_ERR_INVALID_ARG);
+  EXPECT_NE(status.message().find("left-handed"), std::string::npos) << status.message();
+}
+
 TEST(Dynamic3dgsLoaderTest, RejectsInconsistentMeta) {
   TempDir dir;
   const std::vector<Camera> rig = Rig(3, kWidth, kHeight, false);
@@ -1072,7 +1158,7 @@ TEST(CaptureOptionsTest, TestCameraAndFrameWindow) {
   WriteDynamicTransforms(dir, Rig(3, kWidth, kHeight, false), 3, false);
   Capture capture;
   ASSERT_TRUE(Load(dir.path(), &capture).ok());
-  EXPECT_EQ(capture.test_camera, 0);
+  EXPECT_EQ(capture.test_cameras, (std::vector<int>{0}));
   EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{1, 2}));
   CaptureOptions options;
   options.test_camera = -1;

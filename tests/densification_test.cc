@@ -166,6 +166,28 @@ TEST(DensificationTest, CapKeepsTheLargestGradients) {
   EXPECT_EQ(model.size(), 6u);
 }
 
+TEST(DensificationTest, PruningIsBoundedMostTransparentFirst) {
+  GaussianModel model = Model({0.005f, 0.005f, 0.005f, 0.005f, 0.005f, 0.005f},
+                              {0.001f, 0.004f, 0.002f, 0.5f, 0.003f, 0.0005f});
+  AdamOptimizer adam = MakeGaussianOptimizer(model, GaussianLearningRates(), 1.0f);
+  DensificationStats stats;
+  stats.Reset(6);
+  DensificationSettings settings;
+  settings.max_prune_fraction = 0.5f;  // 3 of the 5 below min_opacity
+  TrainingRandom rng(1);
+  DensifyCounts counts;
+  ASSERT_TRUE(DensifyAndPrune(settings, 1.0f, false, &rng, &model, &adam, &stats, &counts).ok());
+  EXPECT_EQ(counts.pruned, 3u);
+  ASSERT_EQ(model.size(), 3u);
+  EXPECT_EQ(model.positions[0], 1.0f);  // rows 1, 3 and 4 stay
+  EXPECT_EQ(model.positions[3], 3.0f);
+  EXPECT_EQ(model.positions[6], 4.0f);
+  EXPECT_EQ(adam.rows(), 3u);
+  settings.max_prune_fraction = 1.0f;
+  ASSERT_TRUE(DensifyAndPrune(settings, 1.0f, false, &rng, &model, &adam, &stats, &counts).ok());
+  EXPECT_EQ(counts.pruned, 2u);
+}
+
 TEST(DensificationTest, OpacityResetLowersOpacitiesAndMoments) {
   GaussianModel model = Model({0.01f, 0.01f}, {0.9f, 0.005f});
   AdamOptimizer adam = OptimizerWithMoments(&model);

@@ -17,8 +17,10 @@
 #include "train/gaussian_model.h"
 #include "train/gaussian_optimizer.h"
 #include "train/keyframe_trainer.h"
+#include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/progress_bar.h"
+#include "train/scene_extent.h"
 
 namespace m4d {
 namespace {
@@ -77,7 +79,7 @@ Scene MakeScene() {
     }
     images.push_back(std::move(image));
   }
-  capture.test_camera = 4;
+  capture.test_cameras = {4};
   capture.frames = std::make_unique<MemoryFrames>(std::move(images));
   std::mt19937 rng(5);
   std::normal_distribution<float> noise(0.0f, 0.05f);
@@ -120,7 +122,7 @@ TrainingRun Train(const Scene& scene, const KeyframeTrainingOptions& options) {
   const Capture& capture = scene.capture;
   TrainingViews train, test;
   EXPECT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
-  EXPECT_TRUE(LoadTrainingViews(capture, 0, {capture.test_camera}, &test).ok());
+  EXPECT_TRUE(LoadTrainingViews(capture, 0, capture.test_cameras, &test).ok());
   EXPECT_EQ(train.size(), kCameras - 1);
   GaussianModel initial;
   EXPECT_TRUE(
@@ -221,16 +223,102 @@ TEST(KeyframeTrainerTest, FrozenGroupsStayAndCapHolds) {
   EXPECT_NE(model.positions, start.positions);
 }
 
-TEST(KeyframeTrainerTest, TrainKeyframeFromRandomPoints) {
+TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
   Scene scene = MakeScene();
   scene.capture.initial_points = PointCloud();
   KeyframeTrainingOptions options = TestOptions();
   options.iterations = 60;
   options.random_points = 400;
-  GaussianModel model;
-  ASSERT_TRUE(TrainKeyframe(scene.capture, 0, options, nullptr, &model).ok());
-  EXPECT_GT(model.size(), 0u);
-  for (float v : model.positions) ASSERT_TRUE(std::isfinite(v));
+  for (bool random : {false, true}) {
+    options.random_initialisation = random;
+    GaussianModel model;
+    ASSERT_TRUE(TrainKeyframe(scene.capture, 0, options, nullptr, &model).ok());
+    EXPECT_GT(model.size(), 0u);
+    for (float v : model.positions) ASSERT_TRUE(std::isfinite(v));
+  }
+}
+
+// The fraction of the points within 0.3 of a true Gaussian centre.
+double ShareNearContent(const Scene& scene, const std::vector<float>& positions) {
+  double sum = 0;
+  const size_t n = positions.size() / 3;
+  for (size_t i = 0; i < n; ++i) {
+    double best = 1e30;
+    for (size_t j = 0; j < scene.truth.size(); ++j) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double d = positions[3 * i + a] - scene.truth.positions[3 * j + a];
+        d2 += d * d;
+      }
+      best = std::min(best, d2);
+    }
+    sum += best < 0.09 ? 1 : 0;
+  }
+  return sum / static_cast<double>(n);
+}
+
+TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
+  const Scene scene = MakeScene();
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, scene.capture.TrainCameras(), &train).ok());
+  PhotoConsistencyOptions options;
+  options.points = 1000;
+  options.seed = 4;
+  PointCloud points;
+  ASSERT_TRUE(PhotoConsistentPoints(train, options, &points).ok());
+  ASSERT_EQ(points.size(), 1000u);
+  for (float c : points.colors) ASSERT_TRUE(c >= 0.0f && c <= 1.0f);
+  // What the box initialisation would start from, for comparison.
+  const SceneBounds bounds = CameraSceneBounds(train.cameras);
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = bounds.centre[a] - bounds.extent;
+    hi[a] = bounds.centre[a] + bounds.extent;
+  }
+  GaussianModel random;
+  ASSERT_TRUE(InitialiseRandom(lo, hi, 1000, 4, PointInitialisationOptions(), &random).ok());
+  const double photo = ShareNearContent(scene, points.positions);
+  const double box = ShareNearContent(scene, random.positions);
+  EXPECT_GT(photo, 3 * box) << photo << " vs " << box;
+  // Seeded: the same points again.
+  PointCloud again;
+  ASSERT_TRUE(PhotoConsistentPoints(train, options, &again).ok());
+  EXPECT_EQ(again.positions, points.positions);
+  TrainingViews none;
+  EXPECT_EQ(PhotoConsistentPoints(none, options, &again).code(), M4D_ERR_INVALID_ARG);
+}
+
+// After an opacity reset nothing is pruned until reset_recovery iterations have passed, and no
+// densification step removes more than max_prune_fraction of the model.
+TEST(KeyframeTrainerTest, ResetIsFollowedByRecoveryNotCollapse) {
+  const Scene scene = MakeScene();
+  KeyframeTrainingOptions options = TestOptions();
+  options.densify_interval = 10;
+  options.densify_until = 400;
+  options.opacity_reset_interval = 200;
+  options.reset_recovery = 100;
+  options.densification.max_prune_fraction = 0.5f;
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, scene.capture.TrainCameras(), &train).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), &initial)
+          .ok());
+  KeyframeTrainer trainer;
+  ASSERT_TRUE(trainer.Init(options, train, initial).ok());
+  size_t previous = trainer.model().size();
+  size_t pruned_before = 0;
+  while (trainer.iteration() < options.iterations) {
+    ASSERT_TRUE(trainer.Step().ok());
+    const int it = trainer.iteration();
+    const size_t pruned = trainer.densify_totals().pruned;
+    if (it > 200 && it < 300) {
+      EXPECT_EQ(pruned, pruned_before) << "pruned at " << it;
+    }
+    EXPECT_GE(2 * trainer.model().size(), previous) << "at " << it;
+    previous = trainer.model().size();
+    pruned_before = pruned;
+  }
 }
 
 TEST(KeyframeTrainerTest, BadInputIsRejected) {

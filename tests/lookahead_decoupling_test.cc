@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -105,8 +107,8 @@ void CountDynamic(const BlobScene& scene, const DecouplingResult& result, size_t
 TEST(LookaheadDecouplingTest, SeparatesTheMovingBlobFromTheBackground) {
   const BlobScene scene = MakeBlobScene();
   DecouplingResult result;
-  ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, {ViewsWithBlobAt(scene, 0.15f)}, 6.0f, BlobOptions(),
-                               &result)
+  ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, ViewsWithBlobAt(scene, 0.0f),
+                               {ViewsWithBlobAt(scene, 0.15f)}, 6.0f, BlobOptions(), &result)
                   .ok());
   size_t background_dynamic, blob_dynamic;
   CountDynamic(scene, result, &background_dynamic, &blob_dynamic);
@@ -127,22 +129,57 @@ TEST(LookaheadDecouplingTest, IntermediateStepsCatchMotionThatReturns) {
   const TrainingViews away = ViewsWithBlobAt(scene, 0.15f), back = ViewsWithBlobAt(scene, 0.0f);
   size_t background_dynamic, blob_dynamic;
   DecouplingResult jump;
-  ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, {back}, 6.0f, BlobOptions(), &jump).ok());
+  ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, back, {back}, 6.0f, BlobOptions(), &jump).ok());
   CountDynamic(scene, jump, &background_dynamic, &blob_dynamic);
   EXPECT_LT(blob_dynamic, scene.dynamic_set.size() / 10);
 
   DecouplingResult stepped;
-  ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, {away, back}, 6.0f, BlobOptions(), &stepped).ok());
+  ASSERT_TRUE(
+      DecoupleKeyframe(scene.keyframe, back, {away, back}, 6.0f, BlobOptions(), &stepped).ok());
   CountDynamic(scene, stepped, &background_dynamic, &blob_dynamic);
   EXPECT_GT(blob_dynamic, scene.dynamic_set.size() * 8 / 10);
   EXPECT_LT(background_dynamic, scene.static_set.size() / 10);
 }
 
+// Sensor noise of 2 % per pixel and frame, seeded.
+TrainingViews WithNoise(TrainingViews views, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, 0.02f);
+  for (Image& image : views.images) {
+    for (float& v : image.pixels) v = std::clamp(v + noise(rng), 0.0f, 1.0f);
+  }
+  return views;
+}
+
+// With a displacement threshold low enough that noise-fitting drift passes it, only the change
+// support keeps the background static; the moving blob stays dynamic.
+TEST(LookaheadDecouplingTest, NoiseIsNotMotion) {
+  const BlobScene scene = MakeBlobScene();
+  const TrainingViews keyframe = WithNoise(ViewsWithBlobAt(scene, 0.0f), 1);
+  const TrainingViews later = WithNoise(ViewsWithBlobAt(scene, 0.15f), 2);
+  DecouplingOptions options = BlobOptions();
+  options.thresholds.displacement = 0.02f;
+  options.thresholds.scale_change = 0.1f;
+  size_t background[2], blob[2];
+  for (int supported = 0; supported < 2; ++supported) {
+    options.thresholds.change_support = supported ? DecouplingThresholds().change_support : 0.0f;
+    DecouplingResult result;
+    ASSERT_TRUE(DecoupleKeyframe(scene.keyframe, keyframe, {later}, 6.0f, options, &result).ok());
+    CountDynamic(scene, result, &background[supported], &blob[supported]);
+    EXPECT_EQ(result.measures.change_support.empty(), supported == 0);
+  }
+  const size_t ns = scene.static_set.size();
+  EXPECT_GT(background[0], ns / 4) << "noise did not move the background: the test is moot";
+  EXPECT_LT(background[1], ns / 10) << background[0];
+  EXPECT_GT(blob[1], scene.dynamic_set.size() * 8 / 10);
+}
+
 TEST(LookaheadDecouplingTest, NoLookaheadFrameIsAnError) {
   const BlobScene scene = MakeBlobScene();
   DecouplingResult result;
-  EXPECT_EQ(DecoupleKeyframe(scene.keyframe, {}, 6.0f, BlobOptions(), &result).code(),
-            M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(
+      DecoupleKeyframe(scene.keyframe, TrainingViews(), {}, 6.0f, BlobOptions(), &result).code(),
+      M4D_ERR_INVALID_ARG);
 }
 
 }  // namespace

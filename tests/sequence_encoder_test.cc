@@ -34,8 +34,8 @@ class MemoryFrames : public FrameSource {
   std::vector<std::vector<Image>> images_;
 };
 
-// A background and a blob moving right by 0.06 per frame; a second blob appears at frame 3.
-Capture MakeCapture() {
+// A background and a blob moving right by `speed` per frame; a second blob appears at frame 3.
+Capture MakeCapture(float speed = 0.06f) {
   test::SceneOptions bg;
   bg.count = 250;
   bg.sh_degree = 0;
@@ -58,7 +58,7 @@ Capture MakeCapture() {
   Capture capture;
   capture.layout = "memory";
   capture.frame_count = kFrames;
-  capture.test_camera = 0;
+  capture.test_cameras = {0};
   std::vector<std::vector<Image>> images(kFrames);
   std::vector<Camera> rig;
   const float target[3] = {0, 0, 0};
@@ -73,7 +73,7 @@ Capture MakeCapture() {
   RenderContext context;
   for (int f = 0; f < kFrames; ++f) {
     GaussianSet moved = blob;
-    for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i] += 0.06f * f;
+    for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i] += speed * f;
     std::vector<GaussianLayerView> layers = {LayerView(background), LayerView(moved)};
     if (f >= 3) layers.push_back(LayerView(newcomer));
     for (int c = 0; c < kCameras; ++c) {
@@ -245,6 +245,40 @@ TEST(SequenceEncoderTest, CompensationIsCodedOnlyWhereItGains) {
   EXPECT_NE(never.frames[1].compensation_gain, 0.0);
   EXPECT_NEAR(never.frames[1].training_psnr,
               always.frames[1].training_psnr - always.frames[1].compensation_gain, 0.3);
+}
+
+// Motion is a mode decision: coded where it raises the training views' PSNR, else the frame
+// shows the previous one again (the grid's box holds no Gaussian).
+TEST(SequenceEncoderTest, MotionIsCodedOnlyWhereItGains) {
+  constexpr int kCodedFrames = 3;
+  Capture capture = MakeCapture();
+  for (double min_gain : {0.0, 1e9}) {
+    EncoderOptions o = SmallOptions();
+    o.motion_min_gain = min_gain;
+    o.gop.adaptive = false;
+    o.frame_count = kCodedFrames;
+    o.compensation_min_gain = 1e9;  // never: frames differ by motion alone
+    o.ablation.decoupling = false;  // every Gaussian may move
+    SequenceEncoder encoder(capture, o);
+    SequenceReport report;
+    ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+    const std::vector<std::string> decoded = DecodedHashes(encoder.stream());
+    ASSERT_EQ(decoded.size(), static_cast<size_t>(kCodedFrames));
+    for (int f = 1; f < kCodedFrames; ++f) {
+      const FrameReport& frame = report.frames[f];
+      EXPECT_EQ(frame.hash, decoded[f]) << f;
+      EXPECT_EQ(frame.motion_skipped, !(frame.motion_gain > min_gain)) << f;
+      EXPECT_NE(frame.motion_gain, 0.0) << f;  // measured either way
+      if (frame.motion_skipped) {
+        EXPECT_EQ(decoded[f], decoded[f - 1]) << f;
+      }
+    }
+    // The blob moves 0.06 a frame: motion pays; forced off, every frame repeats the keyframe.
+    EXPECT_EQ(report.frames[1].motion_skipped, min_gain > 0) << report.frames[1].motion_gain;
+    if (min_gain > 0) {
+      EXPECT_LT(report.frames[2].training_psnr, report.frames[0].training_psnr - 0.5);
+    }
+  }
 }
 
 // The per-frame baseline: every frame a static keyframe from its own training (here from the

@@ -503,7 +503,7 @@ TEST(SyntheticScene, CaptureInMemoryMatchesTheWrittenImages) {
   EXPECT_EQ(capture.layout, "synthetic");
   EXPECT_EQ(capture.frame_count, o.frames);
   EXPECT_EQ(capture.camera_count(), o.cameras);
-  EXPECT_EQ(capture.test_camera, 0);
+  EXPECT_EQ(capture.test_cameras, (std::vector<int>{0}));
   EXPECT_EQ(capture.TrainCameras(), (std::vector<int>{1, 2}));
   EXPECT_EQ(capture.initial_points.size(), static_cast<size_t>(o.points));
   for (int f = 0; f < o.frames; ++f) {

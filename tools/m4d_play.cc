@@ -205,7 +205,7 @@ class CameraPath {
       *error = status.message();
       return false;
     }
-    const int index = o.camera >= 0 ? o.camera : std::max(capture.test_camera, 0);
+    const int index = o.camera >= 0 ? o.camera : std::max(capture.FirstTestCamera(), 0);
     if (capture.cameras.empty() || index >= static_cast<int>(capture.cameras[0].size())) {
       *error = "camera " + std::to_string(index) + " not in " + o.capture;
       return false;

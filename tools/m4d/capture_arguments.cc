@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "dataset/capture_check.h"
 #include "dataset/capture_loader.h"
 #include "synthetic_scene/scene_writer.h"
 
@@ -50,8 +51,9 @@ void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
                       "out/realistic-scene)");
   command
       ->add_option("--test-camera", args->capture.test_camera,
-                   "held-out camera (-1: none; N3DV convention: 0)")
-      ->capture_default_str();
+                   "held-out camera index (-1: none; default: the layout's own held-out cameras, "
+                   "e.g. test_meta.json, else camera 0 as N3DV)")
+      ->check(CLI::Range(-1, 1 << 20));
   command->add_option("--downscale", args->capture.downscale, "integer image downscale factor")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
@@ -100,6 +102,20 @@ Status OpenCapture(const CaptureArguments& args, Capture* capture) {
                capture->camera_count() ? capture->camera(0, 0).width : 0,
                capture->camera_count() ? capture->camera(0, 0).height : 0,
                capture->initial_points.size());
+  for (const std::string& note : capture->notes) std::fprintf(stderr, "  note: %s\n", note.c_str());
+  if (!capture->test_cameras.empty()) {
+    std::string names;
+    for (int c : capture->test_cameras) names += " " + capture->camera_names[c];
+    std::fprintf(stderr, "  held-out cameras:%s\n", names.c_str());
+  }
+  return Status::Ok();
+}
+
+Status CheckViewsBeforeTraining(const Capture& capture, int first_frame, int frame_count) {
+  const auto start = std::chrono::steady_clock::now();
+  M4D_RETURN_IF_ERROR(CheckCaptureViews(capture, first_frame, frame_count));
+  std::fprintf(stderr, "  every view of the frames to code decodes at its size (%.1f s)\n",
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return Status::Ok();
 }
 

@@ -30,6 +30,10 @@ void AddCaptureArguments(CLI::App* command, CaptureArguments* args);
 // Loads the dataset (generating a built-in scene first if needed), printing what it does.
 Status OpenCapture(const CaptureArguments& args, Capture* capture);
 
+// CheckCaptureViews (dataset/capture_check.h) over the frames a command will use, before any
+// training; says on stderr that they passed.
+Status CheckViewsBeforeTraining(const Capture& capture, int first_frame, int frame_count);
+
 }  // namespace m4d
 
 #endif  // M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_

@@ -13,6 +13,7 @@
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
 #include "sequence_report_output.h"
+#include "stream/frame_rate.h"
 #include "stream_check.h"
 #include "train/progress_bar.h"
 #include "video/video_writer.h"
@@ -75,6 +76,9 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "at most this many Gaussians after densification (keyframes and retraining; "
                   "default: the schedule's 1000000)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--random-init", a->random_init,
+                "without initial points, start the first keyframe uniform at random in the "
+                "cameras' box instead of from photo-consistent points");
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -115,6 +119,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--compensation-min-gain", o.compensation_min_gain,
                   "code a frame's compensation only when it raises the training views' PSNR by "
                   "this many dB (negative: always, as the paper)")
+      ->capture_default_str();
+  cmd->add_option("--motion-min-gain", o.motion_min_gain,
+                  "code a frame's motion only when it raises the training views' PSNR by more "
+                  "than this many dB over showing the previous frame again (negative: always)")
       ->capture_default_str();
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
       ->capture_default_str();
@@ -209,6 +217,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_ply", args.keyframe_ply},
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
+          {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
           {"lambda", o.motion.rate_weight},
@@ -223,6 +232,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"motion_views_per_step", o.motion.views_per_step},
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
+          {"motion_min_gain", o.motion_min_gain},
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},
           {"fixed_gop", o.gop.fixed_length},
           {"max_gop", o.gop.max_length},
@@ -235,6 +245,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"independent_frames", o.independent_frames},
           {"keyframe_bits", QuantizationBits(o.quantization)},
           {"compensation_bits", QuantizationBits(o.compensation_quantization)},
+          {"fps", args.fps},
           {"seed", o.seed}};
 }
 
@@ -243,14 +254,34 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
                                   ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
                                   : args.encoder.keyframe;
   if (args.max_gaussians > 0) o.densification.max_gaussians = args.max_gaussians;
+  o.random_initialisation = args.random_init;
   return o;
+}
+
+// --fps, else the capture's recorded rate, else kDefaultFps (said on stderr).
+Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOptions* options) {
+  if (!fps.empty()) return ParseFrameRate(fps, &options->fps_num, &options->fps_den);
+  if (capture.fps_num > 0) {
+    options->fps_num = capture.fps_num;
+    options->fps_den = capture.fps_den;
+    return Status::Ok();
+  }
+  options->fps_num = kDefaultFps;
+  options->fps_den = 1;
+  std::fprintf(stderr, "%s records no frame rate: %u fps assumed (--fps to set it)\n",
+               capture.layout.c_str(), kDefaultFps);
+  return Status::Ok();
 }
 
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   EncoderOptions options;
   M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
+  uint32_t unused_num, unused_den;
+  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
+  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
 
   ProgressBar bar;
   bool header = true;
@@ -329,6 +360,9 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   AddCaptureArguments(cmd, &args->capture);
   AddEncoderOptions(cmd, args.get());
   cmd->add_option("-o,--output", args->output, "stream file")->capture_default_str();
+  cmd->add_option("--fps", args->fps,
+                  "frame rate written into the stream: 30, 29.97 or 30000/1001 (default: the "
+                  "capture's, else 30)");
   cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
   cmd->add_option("--views", args->views,
                   "write the held-out view, its decoded render and their difference (x4), one PNG "

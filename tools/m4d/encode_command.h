@@ -23,6 +23,7 @@ struct EncodeArguments {
   std::string rate_point;          // r1..r5, or empty for lambda's nearest
   double lambda = 1e-4;            // lambda_2 when rate_point is empty (1e-4: r4)
   int keyframe_iterations = 0;     // 0: the options' schedule
+  bool random_init = false;        // KeyframeTrainingOptions::random_initialisation
   int max_gaussians = 0;           // cap of keyframe training and retraining (0: the schedule's)
   std::string keyframe_ply;        // first keyframe read from here instead of trained
   double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
@@ -32,6 +33,7 @@ struct EncodeArguments {
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)
+  std::string fps;    // frame rate override ("30", "29.97", "30000/1001"); '' : the capture's
   // Frame -> model trained earlier, for --independent-frames (empty: train each frame).
   std::function<Status(int frame, GaussianModel* model)> keyframe_source;
 };

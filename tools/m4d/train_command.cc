@@ -25,6 +25,7 @@ struct TrainArguments {
   int sh_degree = 3;
   int threads = 0;
   uint64_t seed = 1;
+  bool random_init = false;
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
@@ -32,12 +33,18 @@ struct TrainArguments {
 Status RunTrain(const TrainArguments& args) {
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  if (args.frame >= capture.frame_count) {
+    return Status(M4D_ERR_INVALID_ARG, "frame " + std::to_string(args.frame) + " but only " +
+                                           std::to_string(capture.frame_count) + " frames");
+  }
+  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, args.frame, 1));
   KeyframeTrainingOptions options = KeyframeTrainingOptions::Short();
   if (args.reference_schedule) options = KeyframeTrainingOptions::Reference();
   if (args.iterations > 0 && !args.reference_schedule) {
     options = KeyframeTrainingOptions::Short(args.iterations);
   }
   options.sh_degree = args.sh_degree;
+  options.random_initialisation = args.random_init;
   options.threads = args.threads;
   options.seed = args.seed;
   const auto start = std::chrono::steady_clock::now();
@@ -65,8 +72,8 @@ Status RunTrain(const TrainArguments& args) {
               1000.0 * seconds / options.iterations);
   std::printf("%-28s %.2f dB  SSIM %.4f\n", "training views", train_quality.mean_psnr,
               train_quality.mean_ssim);
-  if (capture.test_camera >= 0) {
-    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, {capture.test_camera}, &test));
+  if (!capture.test_cameras.empty()) {
+    M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, capture.test_cameras, &test));
     M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &test_quality));
     std::printf("%-28s %.2f dB  SSIM %.4f\n", "held-out camera", test_quality.mean_psnr,
                 test_quality.mean_ssim);
@@ -95,6 +102,9 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       "train", "train one frame's 3D Gaussians (the keyframe stage) and report its quality");
   AddCaptureArguments(cmd, &args->capture);
   cmd->add_option("--frame", args->frame, "frame to train")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--random-init", args->random_init,
+                "without initial points, start uniform at random in the cameras' box (the "
+                "reference's way) instead of from photo-consistent points");
   cmd->add_option("--iterations", args->iterations,
                   "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);

@@ -1,13 +1,19 @@
 #include "dataset/capture.h"
 
+#include <algorithm>
+
 namespace m4d {
 
 std::vector<int> Capture::TrainCameras() const {
   std::vector<int> train;
   for (int c = 0; c < camera_count(); ++c) {
-    if (c != test_camera) train.push_back(c);
+    if (!IsTestCamera(c)) train.push_back(c);
   }
   return train;
+}
+
+bool Capture::IsTestCamera(int index) const {
+  return std::find(test_cameras.begin(), test_cameras.end(), index) != test_cameras.end();
 }
 
 Status Capture::LoadImage(int frame, int camera, Image* rgb) const {

@@ -5,6 +5,7 @@
 #ifndef M4D_ENCODER_DATASET_CAPTURE_H_
 #define M4D_ENCODER_DATASET_CAPTURE_H_
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,15 +31,22 @@ struct Capture {
   int frame_count = 0;
   std::vector<std::string> camera_names;     // one per camera
   std::vector<std::vector<Camera>> cameras;  // [frame][camera]; a fixed rig repeats its row
-  int test_camera = -1;                      // held out from training; -1: none
-  PointCloud initial_points;                 // may be empty: initialise randomly in bounds
+  // Held out from training, in index order. A loader sets the layout's own held-out cameras
+  // (Dynamic3DGaussians' test_meta.json); CaptureOptions::test_camera may replace them.
+  std::vector<int> test_cameras;
+  // Frames per second as fps_num / fps_den when the layout records it (N3DV: 30); 0: unknown.
+  uint32_t fps_num = 0, fps_den = 1;
+  PointCloud initial_points;  // may be empty: initialise in the cameras' common view
   std::unique_ptr<FrameSource> frames;
   std::vector<std::string> notes;  // what the loader changed, e.g. undistorted cameras
 
   int camera_count() const { return static_cast<int>(camera_names.size()); }
   const Camera& camera(int frame, int index) const { return cameras[frame][index]; }
-  // The cameras trained on: every camera but test_camera, in index order.
+  // The cameras trained on: every camera but the test cameras, in index order.
   std::vector<int> TrainCameras() const;
+  bool IsTestCamera(int index) const;
+  // The first test camera (the one players and single-view reports use); -1: none.
+  int FirstTestCamera() const { return test_cameras.empty() ? -1 : test_cameras[0]; }
   // frames->Load with range checks (M4D_ERR_INVALID_ARG for a bad index).
   Status LoadImage(int frame, int camera, Image* rgb) const;
 };

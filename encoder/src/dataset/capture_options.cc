@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "dataset/initial_points.h"
+#include "dataset/world_handedness.h"
 #include "image/area_resize.h"
 
 namespace m4d {
@@ -45,13 +46,24 @@ Status Downscale(int factor, Camera* camera) {
   return Status::Ok();
 }
 
+void SelectTestCameras(int test_camera, Capture* capture) {
+  if (test_camera >= 0) {
+    capture->test_cameras = {test_camera};
+  } else if (test_camera == -1) {
+    capture->test_cameras.clear();
+  } else if (capture->test_cameras.empty() && capture->camera_count() > 1) {
+    capture->test_cameras = {0};
+  }
+}
+
 }  // namespace
 
 Status CheckCaptureOptions(const CaptureOptions& options) {
   if (options.downscale < 1 || options.downscale > 64) {
     return Status(M4D_ERR_INVALID_ARG, "capture: downscale must be 1..64");
   }
-  if (options.first_frame < 0 || options.max_frames < 0 || options.test_camera < -1) {
+  if (options.first_frame < 0 || options.max_frames < 0 ||
+      options.test_camera < kLayoutTestCameras) {
     return Status(M4D_ERR_INVALID_ARG,
                   "capture: first_frame and max_frames must be >= 0, test_camera >= -1");
   }
@@ -75,6 +87,10 @@ Status ApplyCaptureOptions(const CaptureOptions& options, Capture* capture) {
   capture->cameras.erase(capture->cameras.begin(), capture->cameras.begin() + options.first_frame);
   capture->cameras.resize(count);
   capture->frame_count = count;
+  if (!options.initial_points.empty()) {
+    M4D_RETURN_IF_ERROR(LoadInitialPoints(options.initial_points, &capture->initial_points));
+  }
+  M4D_RETURN_IF_ERROR(MakeWorldRightHanded(capture));
   for (std::vector<Camera>& row : capture->cameras) {
     for (Camera& camera : row) {
       if (options.downscale > 1) M4D_RETURN_IF_ERROR(Downscale(options.downscale, &camera));
@@ -88,10 +104,7 @@ Status ApplyCaptureOptions(const CaptureOptions& options, Capture* capture) {
     capture->frames = std::make_unique<WindowedFrameSource>(std::move(capture->frames),
                                                             options.first_frame, options.downscale);
   }
-  capture->test_camera = options.test_camera;
-  if (!options.initial_points.empty()) {
-    M4D_RETURN_IF_ERROR(LoadInitialPoints(options.initial_points, &capture->initial_points));
-  }
+  SelectTestCameras(options.test_camera, capture);
   return Status::Ok();
 }
 

@@ -17,9 +17,8 @@ using Json = nlohmann::json;
 
 constexpr size_t kMaxJsonBytes = size_t{1} << 28;
 
-Status Invalid(const std::string& message) {
-  return Status(M4D_ERR_INVALID_ARG, "train_meta.json: " + message);
-}
+// Messages name the file: ParseMeta prefixes them.
+Status Invalid(const std::string& message) { return Status(M4D_ERR_INVALID_ARG, message); }
 
 // A rows x columns array of finite numbers (values beyond 1e15 are rejected as well).
 Status ParseMatrix(const Json& json, int rows, int columns, double* out) {
@@ -92,9 +91,16 @@ Status CameraIds(const Json& ids, std::vector<int64_t>* sorted) {
   return Status::Ok();
 }
 
-Status Load(const std::string& dir, Capture* capture) {
+// One meta file's cameras: ids sorted, per frame the cameras and image paths in id order.
+struct MetaCameras {
+  std::vector<int64_t> ids;
+  std::vector<std::vector<Camera>> cameras;     // [frame][camera]
+  std::vector<std::vector<std::string>> paths;  // [frame][camera]
+};
+
+Status ParseMetaFile(const std::string& dir, const char* file, MetaCameras* meta) {
   std::vector<uint8_t> bytes;
-  M4D_RETURN_IF_ERROR(ReadFileBytes(dir + "/train_meta.json", kMaxJsonBytes, &bytes));
+  M4D_RETURN_IF_ERROR(ReadFileBytes(dir + "/" + file, kMaxJsonBytes, &bytes));
   const Json root = Json::parse(bytes.begin(), bytes.end(), nullptr, false);
   if (root.is_discarded() || !root.is_object()) return Invalid("not a JSON object");
   int width, height;
@@ -109,12 +115,10 @@ Status Load(const std::string& dir, Capture* capture) {
   for (const char* key : {"k", "w2c", "fn"}) {
     if (root[key].size() != frames) return Invalid(std::string("'") + key + "' frame count");
   }
-  std::vector<int64_t> ids;
+  std::vector<int64_t>& ids = meta->ids;
   M4D_RETURN_IF_ERROR(CameraIds(root["cam_id"][0], &ids));
-  for (int64_t id : ids) capture->camera_names.push_back(std::to_string(id));
-  capture->frame_count = static_cast<int>(frames);
-  capture->cameras.assign(frames, std::vector<Camera>(ids.size()));
-  std::vector<std::vector<std::string>> paths(frames, std::vector<std::string>(ids.size()));
+  meta->cameras.assign(frames, std::vector<Camera>(ids.size()));
+  meta->paths.assign(frames, std::vector<std::string>(ids.size()));
   for (size_t f = 0; f < frames; ++f) {
     const Json *cam_ids, *ks, *w2cs, *files;
     M4D_RETURN_IF_ERROR(FrameList(root, "cam_id", f, ids.size(), &cam_ids));
@@ -128,11 +132,63 @@ Status Load(const std::string& dir, Capture* capture) {
       const size_t c =
           std::lower_bound(ids.begin(), ids.end(), (*cam_ids)[i].get<int64_t>()) - ids.begin();
       if (!(*files)[i].is_string()) return Invalid("'fn' values must be strings");
-      paths[f][c] = dir + "/ims/" + (*files)[i].get<std::string>();
-      M4D_RETURN_IF_ERROR(ViewCamera((*ks)[i], (*w2cs)[i], width, height, &capture->cameras[f][c]));
+      meta->paths[f][c] = dir + "/ims/" + (*files)[i].get<std::string>();
+      M4D_RETURN_IF_ERROR(ViewCamera((*ks)[i], (*w2cs)[i], width, height, &meta->cameras[f][c]));
     }
   }
-  capture->frames = std::make_unique<ImageFileSource>(std::move(paths), capture->cameras);
+  return Status::Ok();
+}
+
+Status ParseMeta(const std::string& dir, const char* file, MetaCameras* meta) {
+  // nlohmann::json reports type errors by exceptions; none may escape.
+  Status status;
+  try {
+    status = ParseMetaFile(dir, file, meta);
+  } catch (const std::exception& e) {
+    status = Invalid(e.what());
+  }
+  if (status.ok()) return status;
+  return Status(status.code(), "dynamic3dgs: " + std::string(file) + ": " + status.message());
+}
+
+// Appends the test cameras after the training ones (same frame count, no shared id) and
+// returns their indices.
+Status AppendTestCameras(MetaCameras test, MetaCameras* all, std::vector<int>* indices) {
+  if (test.cameras.size() != all->cameras.size()) {
+    return Invalid("dynamic3dgs: test_meta.json has " + std::to_string(test.cameras.size()) +
+                   " frames but train_meta.json " + std::to_string(all->cameras.size()));
+  }
+  for (int64_t id : test.ids) {
+    if (std::binary_search(all->ids.begin(), all->ids.end(), id)) {
+      return Invalid("dynamic3dgs: test_meta.json: camera " + std::to_string(id) +
+                     " is also a training camera");
+    }
+  }
+  for (size_t i = 0; i < test.ids.size(); ++i) {
+    indices->push_back(static_cast<int>(all->ids.size() + i));
+  }
+  for (size_t f = 0; f < test.cameras.size(); ++f) {
+    all->cameras[f].insert(all->cameras[f].end(), test.cameras[f].begin(), test.cameras[f].end());
+    for (std::string& path : test.paths[f]) all->paths[f].push_back(std::move(path));
+  }
+  return Status::Ok();
+}
+
+// train_meta.json, and test_meta.json when present: its cameras are the held-out ones.
+Status Load(const std::string& dir, Capture* capture) {
+  MetaCameras meta;
+  M4D_RETURN_IF_ERROR(ParseMeta(dir, "train_meta.json", &meta));
+  std::vector<int64_t> names = meta.ids;
+  if (IsRegularFile(dir + "/test_meta.json")) {
+    MetaCameras test;
+    M4D_RETURN_IF_ERROR(ParseMeta(dir, "test_meta.json", &test));
+    names.insert(names.end(), test.ids.begin(), test.ids.end());
+    M4D_RETURN_IF_ERROR(AppendTestCameras(std::move(test), &meta, &capture->test_cameras));
+  }
+  for (int64_t id : names) capture->camera_names.push_back(std::to_string(id));
+  capture->frame_count = static_cast<int>(meta.cameras.size());
+  capture->cameras = std::move(meta.cameras);
+  capture->frames = std::make_unique<ImageFileSource>(std::move(meta.paths), capture->cameras);
   return Status::Ok();
 }
 
@@ -165,12 +221,7 @@ Status LoadDynamic3dgs(const std::string& dir, const CaptureOptions& options, Ca
   M4D_RETURN_IF_ERROR(CheckCaptureOptions(options));
   *capture = Capture();
   capture->layout = "dynamic3dgs";
-  // nlohmann::json reports type errors by exceptions; none may escape.
-  try {
-    M4D_RETURN_IF_ERROR(Load(dir, capture));
-  } catch (const std::exception& e) {
-    return Invalid(e.what());
-  }
+  M4D_RETURN_IF_ERROR(Load(dir, capture));
   const std::string points = dir + "/init_pt_cld.npz";
   if (options.initial_points.empty() && IsRegularFile(points)) {
     M4D_RETURN_IF_ERROR(LoadPoints(points, &capture->initial_points));

@@ -159,6 +159,7 @@ Status LoadN3dv(const std::string& dir, const CaptureOptions& options, Capture* 
   M4D_RETURN_IF_ERROR(CheckCaptureOptions(options));
   *capture = Capture();
   capture->layout = "n3dv";
+  capture->fps_num = 30;  // the N3DV captures' rate; the files do not record it
   NpyArray poses;
   M4D_RETURN_IF_ERROR(ReadNpyFile(dir + "/poses_bounds.npy", &poses));
   if (poses.shape.size() != 2 || poses.shape[1] != kPoseValues) {

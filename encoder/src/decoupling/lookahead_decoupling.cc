@@ -64,6 +64,38 @@ Status ErrorWeights(const GaussianModel& model, const TrainingViews& views,
   return Status::Ok();
 }
 
+// Per Gaussian of the keyframe model: the share of its blend weight over the step's views on
+// pixels that changed since the keyframe's frame.
+Status ChangeSupport(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
+                     const TrainingViews& step, const RenderSettings& settings,
+                     const TemporalChangeOptions& options, std::vector<float>* support) {
+  if (step.size() != keyframe_views.size() ||
+      step.camera_indices != keyframe_views.camera_indices) {
+    return Status(M4D_ERR_INVALID_ARG, "decoupling: a lookahead step has other cameras");
+  }
+  std::vector<float> blend(keyframe.size(), 0.0f), changed(keyframe.size(), 0.0f);
+  RenderContext context;
+  RenderSettings weighted = settings;
+  weighted.blend_weights = true;
+  const GaussianLayerView layer = LayerView(keyframe);
+  for (int v = 0; v < step.size(); ++v) {
+    TemporalChange change;
+    M4D_RETURN_IF_ERROR(
+        MeasureTemporalChange(keyframe_views.images[v], step.images[v], options, &change));
+    M4D_RETURN_IF_ERROR(
+        RenderForward(step.cameras[v], &layer, 1, weighted, change.mask.data(), &context));
+    for (size_t i = 0; i < keyframe.size(); ++i) {
+      blend[i] += context.blend_weight[i];
+      changed[i] += context.error_weight[i];
+    }
+  }
+  support->resize(keyframe.size());
+  for (size_t i = 0; i < keyframe.size(); ++i) {
+    (*support)[i] = blend[i] > 0 ? changed[i] / blend[i] : 0.0f;
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 void SplitModel(const GaussianModel& model, const std::vector<uint8_t>& flags,
@@ -86,6 +118,9 @@ void MergeMeasures(const LookaheadMeasures& step, LookaheadMeasures* all) {
   }
   for (size_t i = 0; i < step.size(); ++i) {
     all->displacement[i] = std::max(all->displacement[i], step.displacement[i]);
+    if (!step.change_support.empty()) {
+      all->change_support[i] = std::max(all->change_support[i], step.change_support[i]);
+    }
     all->scale_change[i] = std::max(all->scale_change[i], step.scale_change[i]);
     if (!(all->error[i] <= step.error[i])) all->error[i] = step.error[i];  // NaN: no pixel
   }
@@ -93,9 +128,9 @@ void MergeMeasures(const LookaheadMeasures& step, LookaheadMeasures* all) {
 
 }  // namespace
 
-Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<TrainingViews>& steps,
-                        float scene_extent, const DecouplingOptions& options,
-                        DecouplingResult* result) {
+Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
+                        const std::vector<TrainingViews>& steps, float scene_extent,
+                        const DecouplingOptions& options, DecouplingResult* result) {
   if (steps.empty()) return Status(M4D_ERR_INVALID_ARG, "decoupling: no lookahead frame");
   RenderSettings settings;
   settings.threads = options.threads;
@@ -123,7 +158,12 @@ Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<Trainin
     in.log_scales_after = tuned.log_scales.data();
     in.blend_weight = blend.data();
     in.error_weight = error.data();
-    MergeMeasures(MeasureLookahead(views.cameras, in), &result->measures);
+    LookaheadMeasures measures = MeasureLookahead(views.cameras, in);
+    if (options.thresholds.change_support > 0) {
+      M4D_RETURN_IF_ERROR(ChangeSupport(keyframe, keyframe_views, views, settings, options.change,
+                                        &measures.change_support));
+    }
+    MergeMeasures(measures, &result->measures);
   }
 
   // The counts of the first two steps, for reports.
@@ -131,7 +171,8 @@ Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<Trainin
   const DecouplingThresholds& t = options.thresholds;
   result->initially_dynamic = result->refined_dynamic = 0;
   for (size_t i = 0; i < m.size(); ++i) {
-    const bool moved = m.displacement[i] > t.displacement || m.scale_change[i] > t.scale_change;
+    const bool moved = (m.displacement[i] > t.displacement || m.scale_change[i] > t.scale_change) &&
+                       (m.change_support.empty() || m.change_support[i] >= t.change_support);
     result->initially_dynamic += moved;
     result->refined_dynamic += moved && !(m.error[i] > t.error);
   }

@@ -9,7 +9,9 @@
 // single jump to a frame 30 frames on loses fast content, and periodic motion (a swinging
 // arm) may be back where it started at t1. Each Gaussian keeps its largest displacement and
 // scale change over the steps and its smallest error: a point is a fitting artefact only if
-// no step fits it.
+// no step fits it. It also keeps its largest change support: the share of its blend weight
+// (keyframe model, each step's cameras) on pixels where the step's images differ from the
+// keyframe's beyond the noise (temporal_change.h).
 #ifndef M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 #define M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 
@@ -18,6 +20,7 @@
 
 #include "common/status.h"
 #include "decoupling/motion_classification.h"
+#include "decoupling/temporal_change.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
 #include "train/training_views.h"
@@ -26,6 +29,7 @@ namespace m4d {
 
 struct DecouplingOptions {
   int fine_tune_iterations = 100;  // per lookahead step
+  TemporalChangeOptions change;    // for DecouplingThresholds::change_support
   // Position rate of the fine-tuning, times the scene extent, decaying tenfold over it (the
   // paper's 5e-4 for its Gaussian optimisations); scales keep the keyframe's rate.
   float position_learning_rate = 5e-4f;
@@ -44,12 +48,13 @@ struct DecouplingResult {
   size_t refined_dynamic = 0;    // after the error refinement (before the vote)
 };
 
-// keyframe: the trained model of the keyframe; steps: the training views of the lookahead's
-// frames in time order, the last being t1 (at least one). scene_extent: the keyframe
-// training's (for the position learning rate).
-Status DecoupleKeyframe(const GaussianModel& keyframe, const std::vector<TrainingViews>& steps,
-                        float scene_extent, const DecouplingOptions& options,
-                        DecouplingResult* result);
+// keyframe: the trained model of the keyframe; keyframe_views: the keyframe frame's training
+// views; steps: the training views of the lookahead's frames in time order, the last being t1
+// (at least one), each with the keyframe's cameras in the same order. scene_extent: the
+// keyframe training's (for the position learning rate).
+Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
+                        const std::vector<TrainingViews>& steps, float scene_extent,
+                        const DecouplingOptions& options, DecouplingResult* result);
 
 // Splits a model by per-Gaussian flags (1: into `selected`, 0: into `rest`).
 void SplitModel(const GaussianModel& model, const std::vector<uint8_t>& flags,

@@ -7,9 +7,11 @@ std::vector<uint8_t> ClassifyDynamic(const LookaheadMeasures& measures,
                                      const std::vector<uint32_t>& neighbours) {
   const size_t n = measures.size();
   std::vector<uint8_t> refined(n, 0);
+  const bool supported = measures.change_support.size() == n;
   for (size_t i = 0; i < n; ++i) {
-    const bool moved = measures.displacement[i] > thresholds.displacement ||
-                       measures.scale_change[i] > thresholds.scale_change;
+    const bool moved = (measures.displacement[i] > thresholds.displacement ||
+                        measures.scale_change[i] > thresholds.scale_change) &&
+                       (!supported || measures.change_support[i] >= thresholds.change_support);
     const bool artefact = measures.error[i] > thresholds.error;  // false for NaN
     refined[i] = moved && !artefact ? 1 : 0;
   }

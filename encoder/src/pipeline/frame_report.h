@@ -39,6 +39,14 @@ struct FrameReport {
   // Training views' PSNR with the trained compensation minus without it (dB; inter frames
   // with compensation candidates). Below EncoderOptions::compensation_min_gain, none is coded.
   double compensation_gain = 0;
+  // Training views' PSNR of the moved dynamic set minus the unmoved one (dB; inter frames with
+  // motion estimation). Not above EncoderOptions::motion_min_gain: the frame codes no motion
+  // (motion_skipped).
+  double motion_gain = 0;
+  bool motion_skipped = false;
+  // What the adaptive GOP's quality guard compares training_psnr with (dB, inter frames): the
+  // keyframe's training PSNR less its noise gap (SequenceEncoder::NoiseGap).
+  double psnr_reference = 0;
   double psnr = 0;  // held-out camera, decoded frame (dB); 0 without a test camera
   double ssim = 0;
   std::string hash;  // frame hash (bitstream-spec 7) of the encoder's reconstruction

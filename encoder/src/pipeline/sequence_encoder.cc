@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "common/byte_reader.h"
 #include "common/byte_writer.h"
@@ -12,6 +13,7 @@
 #include "decode/frame_hash.h"
 #include "decode/motion_application.h"
 #include "decoupling/lookahead_decoupling.h"
+#include "decoupling/temporal_change.h"
 #include "layers/gaussian_set_writer.h"
 #include "layers/mlp_writer.h"
 #include "layers/motion_grid.h"
@@ -36,6 +38,7 @@ struct SequenceEncoder::Gop {
   bool mlp_trained = false;
   float scene_extent = 1.0f;
   FrameReport keyframe_report;  // its training_psnr is what the adaptive GOP compares with
+  double noise_gap = -1;        // NoiseGap, measured at the first inter frame (-1: not yet)
 };
 
 namespace {
@@ -97,6 +100,17 @@ void DenseGrids(const GridConfig& config, const float* steps, const MotionEstima
   }
 }
 
+// A frame without motion: a grid box that no finite position lies in (its lower corner at the
+// largest float), so the decoder leaves every Gaussian unchanged (bitstream-spec 6.3, step 1)
+// whatever the grid and MLP hold; every brick is zero, so the grid costs a few bytes.
+void SkipMotion(FloatMotionGrid* grid) {
+  for (int a = 0; a < 3; ++a) {
+    grid->box_min[a] = std::numeric_limits<float>::max();
+    grid->box_scale[a] = 1.0f;
+  }
+  for (std::vector<float>& level : grid->values) std::fill(level.begin(), level.end(), 0.0f);
+}
+
 bool SameSet(const GaussianSet& a, const GaussianSet& b) {
   return a.sh_degree == b.sh_degree && a.positions == b.positions && a.log_scales == b.log_scales &&
          a.rotations == b.rotations && a.opacity_logits == b.opacity_logits && a.sh == b.sh;
@@ -155,6 +169,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
   }
   if (!(o.gop.threshold >= 0.0f)) return bad("GOP threshold");
   if (!std::isfinite(o.compensation_min_gain)) return bad("compensation minimum gain");
+  if (!std::isfinite(o.motion_min_gain)) return bad("motion minimum gain");
   for (int l = 0; l < o.grid.num_levels; ++l) {
     if (!(o.grid_steps[l] > 0.0f)) return bad("grid steps must be positive");
   }
@@ -280,7 +295,8 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
     decoupling.seed = options_.seed + static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, decoupling.background);
     DecouplingResult result;
-    M4D_RETURN_IF_ERROR(DecoupleKeyframe(model, steps, gop.scene_extent, decoupling, &result));
+    M4D_RETURN_IF_ERROR(
+        DecoupleKeyframe(model, views, steps, gop.scene_extent, decoupling, &result));
     static_model = std::move(result.static_model);
     dynamic_model = std::move(result.dynamic_model);
     gop.keyframe_report.seconds.decoupling = Since(start);
@@ -360,6 +376,16 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
              &coded_grid, &decoded_grid);
   GaussianSet moved = gop.dynamic_set;
   ApplyMotion(options_.grid, decoded_grid, gop.decoded_mlp, &moved);
+  if (motion_on) {
+    bool skip = false;
+    M4D_RETURN_IF_ERROR(
+        DecideMotion(views, gop.static_set, gop.dynamic_set, moved, &skip, &report));
+    if (skip) {
+      SkipMotion(&coded_grid);
+      moved = gop.dynamic_set;
+      std::fill(motion.motion.begin(), motion.motion.end(), 0.0f);
+    }
+  }
   report.seconds.motion = Since(start);
 
   // Compensation.
@@ -393,7 +419,9 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   report.ratio = gop.dynamic_set.size() > 0 ? static_cast<double>(report.added) /
                                                   static_cast<double>(gop.dynamic_set.size())
                                             : 0.0;
-  const double drop = gop.keyframe_report.training_psnr - report.training_psnr;
+  if (gop.noise_gap < 0) M4D_RETURN_IF_ERROR(NoiseGap(views, &gop.noise_gap));
+  report.psnr_reference = gop.keyframe_report.training_psnr - gop.noise_gap;
+  const double drop = report.psnr_reference - report.training_psnr;
   if (options_.gop.adaptive && length >= options_.gop.min_length &&
       (report.ratio > options_.gop.threshold ||
        (options_.gop.max_psnr_drop > 0 && drop > options_.gop.max_psnr_drop))) {
@@ -457,6 +485,49 @@ RenderSettings SequenceEncoder::Settings() const {
   return settings;
 }
 
+Status SequenceEncoder::NoiseGap(const TrainingViews& next, double* gap) {
+  TrainingViews own;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, gop_->start, capture_.TrainCameras(), &own));
+  GaussianModel model;
+  M4D_RETURN_IF_ERROR(CombinedModel(gop_->static_set, gop_->dynamic_set, &model));
+  double own_error = 0, next_error = 0;
+  size_t pixels = 0;
+  RenderContext context;
+  Image render;
+  for (int v = 0; v < own.size() && v < next.size(); ++v) {
+    TemporalChange change;
+    M4D_RETURN_IF_ERROR(
+        MeasureTemporalChange(own.images[v], next.images[v], options_.decoupling.change, &change));
+    M4D_RETURN_IF_ERROR(RenderView(model, own.cameras[v], Settings(), &context, &render));
+    for (size_t p = 0; p < change.mask.size(); ++p) {
+      if (change.mask[p] > 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double a = render.pixels[3 * p + c] - own.images[v].pixels[3 * p + c];
+        const double b = render.pixels[3 * p + c] - next.images[v].pixels[3 * p + c];
+        own_error += a * a;
+        next_error += b * b;
+      }
+      pixels += 3;
+    }
+  }
+  *gap = pixels > 0 && own_error > 0 && next_error > own_error
+             ? 10.0 * std::log10(next_error / own_error)
+             : 0.0;
+  return Status::Ok();
+}
+
+Status SequenceEncoder::DecideMotion(const TrainingViews& views, const GaussianSet& static_set,
+                                     const GaussianSet& still, const GaussianSet& moved, bool* skip,
+                                     FrameReport* report) {
+  double with = 0, without = 0;
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, moved, &with));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, still, &without));
+  report->motion_gain = with - without;
+  *skip = !(report->motion_gain > options_.motion_min_gain);
+  report->motion_skipped = *skip;
+  return Status::Ok();
+}
+
 Status SequenceEncoder::DecideCompensation(const TrainingViews& views,
                                            const GaussianSet& static_set, const GaussianSet& moved,
                                            CompensationResult* compensation, FrameReport* report) {
@@ -494,10 +565,10 @@ Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
                                  const GaussianSet& dynamic_set, FrameReport* report) {
   report->static_count = static_set.size();
   report->dynamic_count = dynamic_set.size();
-  if (capture_.test_camera < 0) return Status::Ok();
+  if (capture_.test_cameras.empty()) return Status::Ok();
   const Clock::time_point start = Clock::now();
   TrainingViews test;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, {capture_.test_camera}, &test));
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.test_cameras, &test));
   GaussianModel model;
   M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
   const RenderSettings settings = Settings();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "dataset/undistorting_frame_source.h"
+#include "dataset/world_handedness.h"
 #include "image/byte_samples.h"
 #include "image/jpeg_io.h"
 #include "synthetic_scene/lens_resampling.h"
@@ -75,7 +76,7 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
   result.frame_count = options.frames;
   result.camera_names = scene->camera_names();
   result.cameras.assign(options.frames, scene->CalibrationCameras());
-  result.test_camera = options.cameras > 1 ? 0 : -1;
+  if (options.cameras > 1) result.test_cameras = {0};
   result.initial_points = scene->InitialPoints();
   result.frames = std::make_unique<MemoryFrameSource>(options.width, options.height,
                                                       options.cameras, std::move(views));
@@ -87,6 +88,8 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
             options.frames, std::vector<LensDistortion>(options.cameras, distortion)),
         &result));
   }
+  // As a loader gives a left-handed capture: mirrored to a right-handed world.
+  M4D_RETURN_IF_ERROR(MakeWorldRightHanded(&result));
   *capture = std::move(result);
   return Status::Ok();
 }

@@ -137,17 +137,27 @@ Status DensifyAndPrune(const DensificationSettings& settings, float scene_extent
   for (uint32_t p : parents) keep[p] = 0;
   const float min_logit = Logit(settings.min_opacity);
   const float world_limit = settings.max_world_scale * scene_extent;
-  size_t pruned = 0;
+  // (priority, row): size-pruned rows first (-infinity), then by opacity.
+  std::vector<std::pair<float, uint32_t>> prune;
   for (size_t i = 0; i < total; ++i) {
     if (!keep[i]) continue;
-    bool prune = !(model->opacity_logits[i] >= min_logit);
-    if (prune_by_size) {
-      prune = prune || (settings.max_screen_radius > 0 && radii[i] > settings.max_screen_radius) ||
-              MaxScale(*model, i) > world_limit;
+    const float logit = model->opacity_logits[i];
+    const bool by_size =
+        prune_by_size &&
+        ((settings.max_screen_radius > 0 && radii[i] > settings.max_screen_radius) ||
+         MaxScale(*model, i) > world_limit);
+    if (by_size || !(logit >= min_logit)) {
+      prune.emplace_back(by_size || std::isnan(logit) ? -INFINITY : logit,
+                         static_cast<uint32_t>(i));
     }
-    keep[i] = prune ? 0 : 1;
-    pruned += prune ? 1 : 0;
   }
+  const size_t limit = static_cast<size_t>(settings.max_prune_fraction * static_cast<float>(total));
+  if (prune.size() > limit) {
+    std::nth_element(prune.begin(), prune.begin() + limit, prune.end());
+    prune.resize(limit);
+  }
+  for (const auto& p : prune) keep[p.second] = 0;
+  const size_t pruned = prune.size();
   model->Keep(keep);
   optimizer->KeepRows(keep);
   stats->Reset(model->size());

@@ -36,6 +36,11 @@ struct DensificationSettings {
   float max_world_scale = 0.1f;      // times the extent; prune above when pruning by size
   float split_scale_divisor = 1.6f;  // the reference's 0.8 x 2 children
   size_t max_gaussians = kMaxRenderGaussians;  // hard cap after densification
+  // At most this fraction of the Gaussians is pruned in one step, the most transparent first
+  // (1: no limit, the reference). A short schedule on a capture without initial points
+  // otherwise loses most of its model at the first pruning after the opacity reset: 80k of
+  // 108k Gaussians on the Panoptic basketball capture, 21.2 dB falling to 8.2 dB.
+  float max_prune_fraction = 1.0f;
 };
 
 // Per Gaussian: summed view-space gradient norms, views visible in, largest screen radius.
@@ -70,7 +75,8 @@ struct DensifyCounts {
 };
 
 // Clones and splits by the statistics, then prunes (by size too if prune_by_size, as the
-// reference does after the first opacity reset), then restarts the statistics. Cloned and
+// reference does after the first opacity reset; at most max_prune_fraction of the model, the
+// lowest opacities first, size-pruned ones before them), then restarts the statistics. Cloned and
 // split Gaussians get zero optimizer moments. scene_extent must be positive. Fails with
 // M4D_ERR_INVALID_ARG when the model, optimizer and statistics differ in size.
 Status DensifyAndPrune(const DensificationSettings& settings, float scene_extent,

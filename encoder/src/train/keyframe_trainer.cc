@@ -10,6 +10,7 @@
 #include "metrics/psnr.h"
 #include "render/splat_renderer.h"
 #include "train/gaussian_optimizer.h"
+#include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/scene_extent.h"
 
@@ -39,11 +40,16 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   o.opacity_reset_interval = std::max(1, iterations * 3 / 7);
   o.sh_degree_interval = std::max(1, iterations / 30);
   o.densification.max_gaussians = 1000000;
+  o.densification.max_prune_fraction = 0.5f;
+  // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
+  // the floor near the cameras of a 640x360 capture.
+  o.densification.max_screen_radius = 0.0f;
   return o;
 }
 
 Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (o.iterations < 0) return OptionError("negative iteration count");
+  if (o.reset_recovery < 0) return OptionError("negative reset recovery");
   if (o.densify_from < 0 || o.densify_until < 0 || o.densify_interval < 0 ||
       o.opacity_reset_interval < 0 || o.sh_degree_interval < 0) {
     return OptionError("negative interval");
@@ -62,6 +68,7 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (!(d.gradient_threshold >= 0.0f) || !(d.percent_dense >= 0.0f) ||
       !(d.min_opacity > 0.0f && d.min_opacity < 1.0f) || !(d.max_screen_radius >= 0.0f) ||
       !(d.max_world_scale > 0.0f) || !(d.split_scale_divisor > 0.0f) ||
+      !(d.max_prune_fraction >= 0.0f && d.max_prune_fraction <= 1.0f) ||
       d.max_gaussians > kMaxRenderGaussians) {
     return OptionError("densification settings");
   }
@@ -103,6 +110,7 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   rng_ = std::make_unique<TrainingRandom>(options.seed);
   view_order_.clear();
   view_cursor_ = 0;
+  last_reset_ = 0;
   pool_ = std::make_unique<ThreadPool>(options.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
   progress_ = TrainingProgress();
@@ -187,14 +195,16 @@ Status KeyframeTrainer::Step() {
   if (it < options_.densify_until) {
     const Camera& camera = context_.camera;
     stats_.Accumulate(context_.splats, mean2d_.data(), camera.width, camera.height);
+    const bool recovering = last_reset_ > 0 && it - last_reset_ < options_.reset_recovery;
     if (it > options_.densify_from && options_.densify_interval > 0 &&
-        it % options_.densify_interval == 0) {
+        it % options_.densify_interval == 0 && !recovering) {
       M4D_RETURN_IF_ERROR(Densify());
       densified = true;
     }
     if (options_.opacity_reset_interval > 0 && it % options_.opacity_reset_interval == 0) {
       ResetOpacity(options_.opacity_reset_value, &model_, &optimizer_);
       skip = kParamOpacityLogits;
+      last_reset_ = it;
     }
   }
   if (!densified) StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
@@ -239,6 +249,18 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
   GaussianModel initial;
   if (capture.initial_points.size() > 0) {
     M4D_RETURN_IF_ERROR(InitialiseFromPoints(capture.initial_points, init, &initial));
+  } else if (!options.random_initialisation) {
+    PhotoConsistencyOptions photo;
+    photo.points = options.random_points;
+    photo.seed = options.seed;
+    photo.threads = options.threads;
+    PointCloud points;
+    M4D_RETURN_IF_ERROR(PhotoConsistentPoints(views, photo, &points));
+    if (points.size() == 0) {
+      return Status(M4D_ERR_INVALID_ARG,
+                    "keyframe training: no point is seen by enough views to start from");
+    }
+    M4D_RETURN_IF_ERROR(InitialiseFromPoints(points, init, &initial));
   } else {
     const SceneBounds bounds = CameraSceneBounds(views.cameras);
     float lo[3], hi[3];

@@ -54,14 +54,20 @@ struct KeyframeTrainingOptions {
   int densify_interval = 100;
   int opacity_reset_interval = 3000;  // 0: never; size pruning starts after the first
   float opacity_reset_value = 0.01f;
+  // Densification and pruning wait this many iterations after an opacity reset, so that
+  // what the views need regains its opacity first (the reference's 100-iteration interval
+  // gives it that; a short schedule's interval of 28 pruned most of a model).
+  int reset_recovery = 100;
   int sh_degree_interval = 1000;  // active SH degree + 1 every this many iterations (0: never)
   int start_sh_degree = 0;        // active at the start (the model's degree when retraining)
   int sh_degree = 3;              // SH degree of a model TrainKeyframe initialises (0..3)
   double ssim_weight = kDefaultSsimWeight;
   float background[3] = {0.0f, 0.0f, 0.0f};
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
-  // Random initialisation (no points): this many Gaussians in the cameras' box.
+  // Without points: this many Gaussians from photo_consistent_points.h, or uniform at random
+  // in the cameras' box (random_initialisation, the reference's way).
   size_t random_points = 100000;
+  bool random_initialisation = false;
   uint64_t seed = 0;
   int threads = 0;  // 0: the hardware's concurrency
 
@@ -134,6 +140,7 @@ class KeyframeTrainer {
   std::unique_ptr<TrainingRandom> rng_;
   std::vector<int> view_order_;
   size_t view_cursor_ = 0;
+  int last_reset_ = 0;  // iteration of the last opacity reset (0: none yet)
 
   std::unique_ptr<ThreadPool> pool_;
   RenderContext context_;
