@@ -266,7 +266,8 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
   options.seed = 4;
   PointCloud points;
   ASSERT_TRUE(PhotoConsistentPoints(train, options, &points).ok());
-  ASSERT_EQ(points.size(), 1000u);
+  ASSERT_GT(points.size(), 200u);
+  ASSERT_LE(points.size(), 1000u);
   for (float c : points.colors) ASSERT_TRUE(c >= 0.0f && c <= 1.0f);
   // What the box initialisation would start from, for comparison.
   const SceneBounds bounds = CameraSceneBounds(train.cameras);
@@ -276,7 +277,8 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
     hi[a] = bounds.centre[a] + bounds.extent;
   }
   GaussianModel random;
-  ASSERT_TRUE(InitialiseRandom(lo, hi, 1000, 4, PointInitialisationOptions(), &random).ok());
+  ASSERT_TRUE(
+      InitialiseRandom(lo, hi, points.size(), 4, PointInitialisationOptions(), &random).ok());
   const double photo = ShareNearContent(scene, points.positions);
   const double box = ShareNearContent(scene, random.positions);
   EXPECT_GT(photo, 3 * box) << photo << " vs " << box;

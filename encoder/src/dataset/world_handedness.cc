@@ -10,6 +10,12 @@ double RotationDeterminant(const float r[9]) {
   return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
 }
 
+Camera MirrorWorldX(const Camera& camera) {
+  Camera mirrored = camera;
+  for (int r = 0; r < 3; ++r) mirrored.rotation[3 * r] = -camera.rotation[3 * r];
+  return mirrored;
+}
+
 void MirrorWorldX(PointCloud* points) {
   for (size_t i = 0; i < points->size(); ++i) points->positions[3 * i] *= -1.0f;
 }
@@ -36,9 +42,7 @@ Status MakeWorldRightHanded(Capture* capture) {
                       mixed + ")");
   }
   for (std::vector<Camera>& row : capture->cameras) {
-    for (Camera& camera : row) {
-      for (int r = 0; r < 3; ++r) camera.rotation[3 * r] *= -1.0f;
-    }
+    for (Camera& camera : row) camera = MirrorWorldX(camera);
   }
   MirrorWorldX(&capture->initial_points);
   capture->notes.push_back(capture->layout +

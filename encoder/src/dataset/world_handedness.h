@@ -21,7 +21,9 @@ double RotationDeterminant(const float rotation[9]);
 // the handedness differs between cameras (no single world explains such a calibration).
 Status MakeWorldRightHanded(Capture* capture);
 
-// The mirror itself, for points given in the calibration's frame (x negated).
+// The mirror itself: the camera that sees the mirrored world x' = (-x, y, z) as `camera` sees
+// the world (its rotation's first column negated), and points with x negated.
+Camera MirrorWorldX(const Camera& camera);
 void MirrorWorldX(PointCloud* points);
 
 }  // namespace m4d

@@ -1,11 +1,11 @@
 #include "synthetic_scene/synthetic_scene.h"
 
+#include "dataset/world_handedness.h"
 #include "synthetic_scene/camera_rig.h"
 #include "synthetic_scene/scene_animation.h"
 #include "synthetic_scene/scene_random.h"
 #include "synthetic_scene/sensor_effects.h"
 #include "synthetic_scene/surface_point_sampler.h"
-#include "synthetic_scene/world_mirror.h"
 
 namespace m4d {
 

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
-#include <utility>
 #include <vector>
 
 #include "common/thread_pool.h"
@@ -13,7 +11,8 @@
 namespace m4d {
 namespace {
 
-constexpr size_t kMaxCandidates = size_t{1} << 26;
+constexpr size_t kMaxRays = size_t{1} << 24;
+constexpr int kMaxDepths = 1024;
 
 // World point on the ray of pixel (u, v) of the camera, at camera-space depth `depth`.
 void BackProject(const Camera& camera, float u, float v, float depth, float out[3]) {
@@ -39,44 +38,77 @@ bool Sample(const Camera& camera, const Image& image, const float p[3], float rg
   return true;
 }
 
-struct Candidate {
-  float position[3];
-  float colour[3];
-  float score;  // colour variance across the views; infinity when seen by too few
+struct Ray {
+  int view;
+  float u, v;
+  float jitter;  // of the depth samples, in [0, 1)
 };
 
-// Mean colour and its variance (summed over channels) across the views that see the point.
-void Score(const TrainingViews& views, int min_views, Candidate* c) {
-  double sum[3] = {0, 0, 0}, squares = 0;
+struct Found {
+  bool ok = false;
+  float position[3];
+  float colour[3];
+};
+
+// Mean squared colour difference to `reference` over the views (but `source`) that see the
+// point, and their mean colour; infinity when fewer than min_views see it.
+float Score(const TrainingViews& views, int source, const float reference[3], const float p[3],
+            int min_views, float mean[3]) {
+  double sum = 0, colour[3] = {0, 0, 0};
   int seen = 0;
   for (int v = 0; v < views.size(); ++v) {
     float rgb[3];
-    if (!Sample(views.cameras[v], views.images[v], c->position, rgb)) continue;
+    if (v == source || !Sample(views.cameras[v], views.images[v], p, rgb)) continue;
     ++seen;
     for (int k = 0; k < 3; ++k) {
-      sum[k] += rgb[k];
-      squares += static_cast<double>(rgb[k]) * rgb[k];
+      const double d = rgb[k] - reference[k];
+      sum += d * d;
+      colour[k] += rgb[k];
     }
   }
-  c->score = INFINITY;
-  if (seen < min_views) return;
-  double variance = squares / seen;
-  for (int k = 0; k < 3; ++k) {
-    const double mean = sum[k] / seen;
-    c->colour[k] = static_cast<float>(mean);
-    variance -= mean * mean;
+  if (seen < min_views) return INFINITY;
+  for (int k = 0; k < 3; ++k) mean[k] = static_cast<float>((colour[k] + reference[k]) / (seen + 1));
+  return static_cast<float>(sum / seen);
+}
+
+// The ray's most consistent depth, when it stands out from the ray's median score.
+Found SweepRay(const TrainingViews& views, const Ray& ray, float far, int min_views,
+               const PhotoConsistencyOptions& options, std::vector<float>* scores) {
+  const Camera& camera = views.cameras[ray.view];
+  const float* reference =
+      views.images[ray.view].row(static_cast<int>(ray.v)) + 3 * static_cast<int>(ray.u);
+  const float near_inverse = 1.0f / camera.near_plane, far_inverse = 1.0f / far;
+  Found found;
+  float best = INFINITY;
+  scores->clear();
+  for (int k = 0; k < options.depths; ++k) {
+    const float t = (static_cast<float>(k) + ray.jitter) / static_cast<float>(options.depths);
+    const float depth = 1.0f / (near_inverse + (far_inverse - near_inverse) * t);
+    float p[3], mean[3];
+    BackProject(camera, ray.u, ray.v, depth, p);
+    const float score = Score(views, ray.view, reference, p, min_views, mean);
+    if (!std::isfinite(score)) continue;
+    scores->push_back(score);
+    if (score < best) {
+      best = score;
+      std::copy_n(p, 3, found.position);
+      std::copy_n(mean, 3, found.colour);
+    }
   }
-  c->score = static_cast<float>(std::max(variance, 0.0));
+  if (scores->size() < 3) return Found();
+  std::nth_element(scores->begin(), scores->begin() + scores->size() / 2, scores->end());
+  found.ok = best < options.distinctness * (*scores)[scores->size() / 2];
+  return found;
 }
 
 Status CheckOptions(const TrainingViews& views, const PhotoConsistencyOptions& o) {
   if (views.size() == 0) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: no views");
-  if (o.candidates_per_point < 1 || o.min_views < 0 || !(o.far_extents > 0) ||
-      !std::isfinite(o.far_extents)) {
+  if (o.rays_per_point < 1 || o.depths < 3 || o.depths > kMaxDepths || o.min_views < 0 ||
+      !(o.far_extents > 0) || !std::isfinite(o.far_extents) || !(o.distinctness > 0)) {
     return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: bad options");
   }
-  if (o.points * static_cast<size_t>(o.candidates_per_point) > kMaxCandidates) {
-    return LimitError("photo-consistent points: too many candidates");
+  if (o.points * static_cast<size_t>(o.rays_per_point) > kMaxRays) {
+    return LimitError("photo-consistent points: too many rays");
   }
   return Status::Ok();
 }
@@ -88,36 +120,32 @@ Status PhotoConsistentPoints(const TrainingViews& views, const PhotoConsistencyO
   M4D_RETURN_IF_ERROR(CheckOptions(views, options));
   const float extent = CameraSceneBounds(views.cameras).extent;
   if (!(extent > 0)) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: zero extent");
-  const int min_views = options.min_views > 0 ? options.min_views : std::max(2, views.size() / 2);
-  std::vector<Candidate> candidates(options.points *
-                                    static_cast<size_t>(options.candidates_per_point));
+  // The other views that must see a point (the ray's own view sees it by construction).
+  const int min_views =
+      options.min_views > 0 ? options.min_views - 1 : std::max(1, views.size() / 2 - 1);
+  std::vector<Ray> rays(options.points * static_cast<size_t>(options.rays_per_point));
   TrainingRandom rng(options.seed);
-  for (Candidate& c : candidates) {
-    const Camera& camera = views.cameras[rng.Below(static_cast<uint32_t>(views.size()))];
-    const float near = camera.near_plane, far = std::max(near * 2, options.far_extents * extent);
-    const float inverse = 1.0f / far + (1.0f / near - 1.0f / far) * rng.Uniform();
-    BackProject(camera, rng.Uniform() * camera.width, rng.Uniform() * camera.height, 1.0f / inverse,
-                c.position);
+  for (Ray& ray : rays) {
+    ray.view = static_cast<int>(rng.Below(static_cast<uint32_t>(views.size())));
+    ray.u = rng.Uniform() * static_cast<float>(views.cameras[ray.view].width);
+    ray.v = rng.Uniform() * static_cast<float>(views.cameras[ray.view].height);
+    ray.jitter = rng.Uniform();
   }
+  std::vector<Found> found(rays.size());
   ThreadPool pool(options.threads);
-  ParallelForChunks(&pool, candidates.size(), 4096, [&](size_t begin, size_t end, int) {
-    for (size_t i = begin; i < end; ++i) Score(views, min_views, &candidates[i]);
+  std::vector<std::vector<float>> scratch(static_cast<size_t>(pool.size()));
+  ParallelForChunks(&pool, rays.size(), 256, [&](size_t begin, size_t end, int worker) {
+    for (size_t i = begin; i < end; ++i) {
+      const float far =
+          std::max(2.0f * views.cameras[rays[i].view].near_plane, options.far_extents * extent);
+      found[i] = SweepRay(views, rays[i], far, min_views, options, &scratch[worker]);
+    }
   });
-  std::vector<uint32_t> order(candidates.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
-  const auto better = [&](uint32_t a, uint32_t b) {
-    return candidates[a].score < candidates[b].score ||
-           (candidates[a].score == candidates[b].score && a < b);
-  };
-  const size_t keep = std::min(options.points, order.size());
-  std::nth_element(order.begin(), order.begin() + keep, order.end(), better);
-  std::sort(order.begin(), order.begin() + keep);  // candidate order: independent of the sort
   *points = PointCloud();
-  for (size_t k = 0; k < keep; ++k) {
-    const Candidate& c = candidates[order[k]];
-    if (!std::isfinite(c.score)) continue;
-    points->positions.insert(points->positions.end(), c.position, c.position + 3);
-    for (float colour : c.colour) points->colors.push_back(std::clamp(colour, 0.0f, 1.0f));
+  for (const Found& f : found) {
+    if (!f.ok || points->size() == options.points) continue;
+    points->positions.insert(points->positions.end(), f.position, f.position + 3);
+    for (float colour : f.colour) points->colors.push_back(std::clamp(colour, 0.0f, 1.0f));
   }
   return Status::Ok();
 }

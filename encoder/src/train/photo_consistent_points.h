@@ -1,13 +1,15 @@
 // Initial points for a capture that has none (no COLMAP model, no init_pt_cld.npz): a quick
-// multi-view estimate instead of points uniform in a box. Candidates are drawn on rays of the
-// training views (a random pixel of a random view, inverse depth uniform between the near
-// plane and far away), each is projected into every view that sees it, and the candidates
-// whose colour agrees best across those views are kept, coloured by their mean. A point on a
-// surface looks alike from every camera; a point in empty space or at a wrong depth lands on
-// different things. Occlusion is ignored: this only has to start training near the surfaces.
-//
-// On the Panoptic basketball capture (27 cameras, 640x360, 2000 iterations) this is what
-// keeps the keyframe from starting as a grey fog inside the dome (README, Real captures).
+// multi-view estimate (a plane sweep along single rays) instead of points uniform in a box.
+// A ray is a random pixel of a random training view; along it, depths are sampled uniformly in
+// inverse depth between the near plane and far away, and each depth is scored by how far the
+// colours the other views see there are from the pixel's (mean squared difference over the
+// views that see the point). The ray gives a point at its best depth only when that depth is
+// distinctive: its score well below the ray's median score. A point on a surface looks alike
+// from every camera; at a wrong depth it lands on different things. Rays through uniform
+// colour (a white wall, a black backdrop) match at every depth and give no point: a global
+// "lowest colour variance" choice filled the Panoptic dome's air with points that see white
+// wall from everywhere, and trained into fog. Occlusion is ignored: this only has to start
+// training near the surfaces.
 #ifndef M4D_ENCODER_TRAIN_PHOTO_CONSISTENT_POINTS_H_
 #define M4D_ENCODER_TRAIN_PHOTO_CONSISTENT_POINTS_H_
 
@@ -21,8 +23,10 @@
 namespace m4d {
 
 struct PhotoConsistencyOptions {
-  size_t points = 100000;         // kept
-  int candidates_per_point = 16;  // drawn per kept point
+  size_t points = 100000;      // at most this many kept
+  int rays_per_point = 3;      // rays drawn per point asked for
+  int depths = 48;             // samples along a ray
+  float distinctness = 0.35f;  // best score below this times the ray's median score
   // A candidate counts only if this many views see it (in front of the near plane, inside the
   // image); 0: half the views, at least 2.
   int min_views = 0;
@@ -33,8 +37,8 @@ struct PhotoConsistencyOptions {
   int threads = 0;
 };
 
-// M4D_ERR_INVALID_ARG for no views, a zero camera extent or bad options; the result may hold
-// fewer points than asked when few candidates are seen by enough views.
+// M4D_ERR_INVALID_ARG for no views, a zero camera extent or bad options; the result holds
+// fewer points than asked when fewer rays find a distinctive depth.
 Status PhotoConsistentPoints(const TrainingViews& views, const PhotoConsistencyOptions& options,
                              PointCloud* points);
 
