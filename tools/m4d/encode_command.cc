@@ -98,6 +98,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--tau-e", o.decoupling.thresholds.error,
                   "decoupling: error threshold of the refinement (mean absolute error in [0, 1])")
       ->capture_default_str();
+  cmd->add_option("--change-support", o.decoupling.thresholds.change_support,
+                  "decoupling: share of a Gaussian's blend weight that must lie on pixels changed "
+                  "beyond the noise for it to be dynamic (0: the paper's rule)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--motion-iterations", o.motion.iterations, "motion estimation per frame")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
@@ -124,6 +129,9 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "code a frame's motion only when it raises the training views' PSNR by more "
                   "than this many dB over showing the previous frame again (negative: always)")
       ->capture_default_str();
+  cmd->add_flag("!--no-noise-gap", o.gop.noise_gap,
+                "the quality guard compares with the keyframe's training PSNR itself, not less "
+                "its noise gap");
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
       ->capture_default_str();
   cmd->add_option("--gop-psnr-drop", o.gop.max_psnr_drop,
@@ -233,6 +241,8 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
           {"motion_min_gain", o.motion_min_gain},
+          {"change_support", o.decoupling.thresholds.change_support},
+          {"noise_gap", o.gop.noise_gap},
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},
           {"fixed_gop", o.gop.fixed_length},
           {"max_gop", o.gop.max_length},

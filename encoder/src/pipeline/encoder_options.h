@@ -36,6 +36,9 @@ struct GopOptions {
   // On the default scene a 2.5 dB drop over the training views is about 1.6 dB on the
   // held-out camera; GOPs last 5 frames and inter frames stay within 0.6 dB of their keyframe.
   float max_psnr_drop = 2.5f;
+  // The drop is measured from the keyframe's training PSNR less its noise gap
+  // (SequenceEncoder::NoiseGap); off: from the keyframe's training PSNR itself.
+  bool noise_gap = true;
   int fixed_length = 0;  // frames per GOP when not adaptive (0: one GOP)
   int max_length = 300;  // a keyframe at least this often, adaptive or not
   int min_length = 2;    // adaptive GOPs are at least this long

@@ -38,7 +38,7 @@ struct SequenceEncoder::Gop {
   bool mlp_trained = false;
   float scene_extent = 1.0f;
   FrameReport keyframe_report;  // its training_psnr is what the adaptive GOP compares with
-  double noise_gap = -1;        // NoiseGap, measured at the first inter frame (-1: not yet)
+  double noise_gap = 0;         // NoiseGap, measured at the first inter frame
 };
 
 namespace {
@@ -419,7 +419,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   report.ratio = gop.dynamic_set.size() > 0 ? static_cast<double>(report.added) /
                                                   static_cast<double>(gop.dynamic_set.size())
                                             : 0.0;
-  if (gop.noise_gap < 0) M4D_RETURN_IF_ERROR(NoiseGap(views, &gop.noise_gap));
+  if (options_.gop.noise_gap && length == 1) M4D_RETURN_IF_ERROR(NoiseGap(views, &gop.noise_gap));
   report.psnr_reference = gop.keyframe_report.training_psnr - gop.noise_gap;
   const double drop = report.psnr_reference - report.training_psnr;
   if (options_.gop.adaptive && length >= options_.gop.min_length &&
