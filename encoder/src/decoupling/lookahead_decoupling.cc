@@ -65,7 +65,8 @@ Status ErrorWeights(const GaussianModel& model, const TrainingViews& views,
 }
 
 // Per Gaussian of the keyframe model: the share of its blend weight over the step's views on
-// pixels that changed since the keyframe's frame.
+// pixels that changed since the keyframe's frame, less the blend-weighted changed share of
+// those views.
 Status ChangeSupport(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
                      const TrainingViews& step, const RenderSettings& settings,
                      const TemporalChangeOptions& options, std::vector<float>* support) {
@@ -73,7 +74,8 @@ Status ChangeSupport(const GaussianModel& keyframe, const TrainingViews& keyfram
       step.camera_indices != keyframe_views.camera_indices) {
     return Status(M4D_ERR_INVALID_ARG, "decoupling: a lookahead step has other cameras");
   }
-  std::vector<float> blend(keyframe.size(), 0.0f), changed(keyframe.size(), 0.0f);
+  std::vector<float> blend(keyframe.size(), 0.0f), changed(keyframe.size(), 0.0f),
+      expected(keyframe.size(), 0.0f);
   RenderContext context;
   RenderSettings weighted = settings;
   weighted.blend_weights = true;
@@ -87,11 +89,12 @@ Status ChangeSupport(const GaussianModel& keyframe, const TrainingViews& keyfram
     for (size_t i = 0; i < keyframe.size(); ++i) {
       blend[i] += context.blend_weight[i];
       changed[i] += context.error_weight[i];
+      expected[i] += context.blend_weight[i] * change.changed_share;
     }
   }
   support->resize(keyframe.size());
   for (size_t i = 0; i < keyframe.size(); ++i) {
-    (*support)[i] = blend[i] > 0 ? changed[i] / blend[i] : 0.0f;
+    (*support)[i] = blend[i] > 0 ? (changed[i] - expected[i]) / blend[i] : 0.0f;
   }
   return Status::Ok();
 }

@@ -11,7 +11,8 @@
 // scale change over the steps and its smallest error: a point is a fitting artefact only if
 // no step fits it. It also keeps its largest change support: the share of its blend weight
 // (keyframe model, each step's cameras) on pixels where the step's images differ from the
-// keyframe's beyond the noise (temporal_change.h).
+// keyframe's beyond the noise (temporal_change.h), less the blend-weighted share of changed
+// pixels in those views (what a footprint unrelated to the change would get).
 #ifndef M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 #define M4D_ENCODER_DECOUPLING_LOOKAHEAD_DECOUPLING_H_
 
