@@ -290,6 +290,75 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
   EXPECT_EQ(PhotoConsistentPoints(none, options, &again).code(), M4D_ERR_INVALID_ARG);
 }
 
+// Content near a rig's edge is inside few cameras' frusta, as a player near the Panoptic
+// dome's wall: it still gets points. A ring of 16 cameras looks at a cluster in the centre; a
+// second cluster off to the side is seen by a few of them only.
+TEST(KeyframeTrainerTest, PhotoConsistentPointsReachContentFewViewsSee) {
+  test::SceneOptions o;
+  o.count = 300;
+  o.sh_degree = 0;
+  o.extent = 0.5f;
+  o.sh_dc = 1.5f;
+  o.logit_lo = 1.0f;
+  o.logit_hi = 3.0f;
+  const GaussianSet centre = test::RandomGaussians(o, 3);
+  GaussianSet edge = test::RandomGaussians(o, 4);
+  const float edge_centre[3] = {3.0f, -2.0f, 0.0f};
+  for (size_t i = 0; i < edge.size(); ++i) {
+    for (int a = 0; a < 3; ++a) edge.positions[3 * i + a] += edge_centre[a];
+  }
+  const GaussianLayerView layers[2] = {LayerView(centre), LayerView(edge)};
+  TrainingViews views;
+  RenderSettings settings;
+  RenderContext context;
+  const float target[3] = {0, 0, 0};
+  int seeing = 0;
+  for (int c = 0; c < 16; ++c) {
+    const float angle = 6.2831853f * static_cast<float>(c) / 16.0f;
+    const float eye[3] = {5.0f * std::cos(angle), 0.3f * static_cast<float>(c % 2),
+                          5.0f * std::sin(angle)};
+    const Camera camera = test::LookAtCamera(96, 72, 110.0f, 0, 0, eye, target);
+    ASSERT_TRUE(RenderForward(camera, layers, 2, settings, nullptr, &context).ok());
+    Image image(96, 72, 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      image.pixels[i] = std::clamp(context.color[i], 0.0f, 1.0f);
+    }
+    views.cameras.push_back(camera);
+    views.images.push_back(std::move(image));
+    float q[3];
+    for (int r = 0; r < 3; ++r) {
+      q[r] = camera.translation[r];
+      for (int k = 0; k < 3; ++k) q[r] += camera.rotation[3 * r + k] * edge_centre[k];
+    }
+    const float u = camera.fx * q[0] / q[2] + camera.cx, v = camera.fy * q[1] / q[2] + camera.cy;
+    seeing += q[2] > 0 && u >= 0 && v >= 0 && u < 96 && v < 72;
+  }
+  ASSERT_GE(seeing, 3);
+  ASSERT_LT(seeing, 8);  // fewer than half the views
+  const auto points_near_edge = [&](int min_views) {
+    PhotoConsistencyOptions options;
+    options.points = 16000;  // above what the rays find: no cap
+    options.rays_per_point = 1;
+    options.seed = 5;
+    if (min_views > 0) options.min_views = min_views;
+    PointCloud points;
+    EXPECT_TRUE(PhotoConsistentPoints(views, options, &points).ok());
+    size_t near = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double d = points.positions[3 * i + a] - edge_centre[a];
+        d2 += d * d;
+      }
+      near += d2 < 0.5;
+    }
+    return near;
+  };
+  const size_t by_default = points_near_edge(0), by_half = points_near_edge(8);
+  EXPECT_GE(by_default, 20u);
+  EXPECT_LE(5 * by_half, by_default) << by_default << " vs " << by_half;
+}
+
 // After an opacity reset nothing is pruned until reset_recovery iterations have passed, and no
 // densification step removes more than max_prune_fraction of the model.
 TEST(KeyframeTrainerTest, ResetIsFollowedByRecoveryNotCollapse) {
@@ -320,6 +389,20 @@ TEST(KeyframeTrainerTest, ResetIsFollowedByRecoveryNotCollapse) {
     EXPECT_GE(2 * trainer.model().size(), previous) << "at " << it;
     previous = trainer.model().size();
     pruned_before = pruned;
+  }
+}
+
+// Every length of the short schedule prunes again after its opacity reset, once the
+// recovery wait is over and before densification ends.
+TEST(KeyframeTrainerTest, ShortSchedulePrunesAfterItsReset) {
+  for (int iterations : {150, 500, 1000, 2000, 4000, 7000, 30000}) {
+    const KeyframeTrainingOptions o = KeyframeTrainingOptions::Short(iterations);
+    const int reset = o.opacity_reset_interval;
+    ASSERT_LT(reset, o.densify_until) << iterations;
+    int step = reset + o.reset_recovery;
+    step += (o.densify_interval - step % o.densify_interval) % o.densify_interval;
+    EXPECT_LT(step, o.densify_until) << iterations;
+    EXPECT_GE(o.reset_recovery, std::min(100, (o.densify_until - reset) / 2)) << iterations;
   }
 }
 

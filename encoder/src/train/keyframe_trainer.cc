@@ -39,6 +39,9 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   o.densify_interval = std::clamp(iterations / 70, 1, 100);
   o.opacity_reset_interval = std::max(1, iterations * 3 / 7);
   o.sh_degree_interval = std::max(1, iterations / 30);
+  // Half the window between the reset and the end of densification, so that pruning still
+  // follows the reset (a 100-iteration wait outlasted the window below 1400 iterations).
+  o.reset_recovery = std::clamp((o.densify_until - o.opacity_reset_interval) / 2, 1, 100);
   o.densification.max_gaussians = 1000000;
   o.densification.max_prune_fraction = 0.5f;
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned

@@ -103,7 +103,7 @@ Found SweepRay(const TrainingViews& views, const Ray& ray, float far, int min_vi
 
 Status CheckOptions(const TrainingViews& views, const PhotoConsistencyOptions& o) {
   if (views.size() == 0) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: no views");
-  if (o.rays_per_point < 1 || o.depths < 3 || o.depths > kMaxDepths || o.min_views < 0 ||
+  if (o.rays_per_point < 1 || o.depths < 3 || o.depths > kMaxDepths || o.min_views < 2 ||
       !(o.far_extents > 0) || !std::isfinite(o.far_extents) || !(o.distinctness > 0)) {
     return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: bad options");
   }
@@ -121,8 +121,7 @@ Status PhotoConsistentPoints(const TrainingViews& views, const PhotoConsistencyO
   const float extent = CameraSceneBounds(views.cameras).extent;
   if (!(extent > 0)) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: zero extent");
   // The other views that must see a point (the ray's own view sees it by construction).
-  const int min_views =
-      options.min_views > 0 ? options.min_views - 1 : std::max(1, views.size() / 2 - 1);
+  const int min_views = std::max(1, std::min(options.min_views, views.size() / 2) - 1);
   std::vector<Ray> rays(options.points * static_cast<size_t>(options.rays_per_point));
   TrainingRandom rng(options.seed);
   for (Ray& ray : rays) {
