@@ -11,7 +11,7 @@
 namespace m4d {
 namespace {
 
-constexpr float kMaxGridValue = 2047.0f;     // what the grid writer can code (+-2047)
+constexpr float kMaxGridValue = 2047.0f;       // what the grid writer can code (+-2047)
 constexpr double kBitsPerRateUnit = 100000.0;  // L_rate in units of 100 kilobits
 
 // One Adam per tensor: the optimizer keeps one row count for all its parameters.
