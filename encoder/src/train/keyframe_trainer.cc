@@ -47,6 +47,7 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
   // the floor near the cameras of a 640x360 capture.
   o.densification.max_screen_radius = 0.0f;
+  o.camera_colour_learning_rate = 2e-3f;
   return o;
 }
 
@@ -60,6 +61,9 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (o.start_sh_degree < 0 || o.start_sh_degree > 3) return OptionError("start SH degree");
   if (o.sh_degree < 0 || o.sh_degree > 3) return OptionError("SH degree");
   if (!(o.ssim_weight >= 0.0 && o.ssim_weight <= 1.0)) return OptionError("SSIM weight");
+  if (!(o.camera_colour_learning_rate >= 0.0f && o.camera_colour_learning_rate <= 1.0f)) {
+    return OptionError("camera colour learning rate");
+  }
   if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
     return OptionError("opacity reset value");
   }
@@ -116,6 +120,7 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   last_reset_ = 0;
   pool_ = std::make_unique<ThreadPool>(options.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
+  camera_colour_.Init(views_.size(), options.camera_colour_learning_rate);
   progress_ = TrainingProgress();
   progress_.iterations = options.iterations;
   progress_.gaussians = model_.size();
@@ -148,7 +153,9 @@ Status KeyframeTrainer::ForwardBackward(int view) {
   M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, Settings(), nullptr, &context_));
   Reshape(camera.width, camera.height, 3, &rendered_);
   std::copy(context_.color.begin(), context_.color.end(), rendered_.pixels.begin());
+  if (camera_colour_.enabled()) camera_colour_.Apply(view, &rendered_);
   M4D_RETURN_IF_ERROR(loss_.Evaluate(rendered_, target, &last_loss_, &loss_gradient_));
+  if (camera_colour_.enabled()) camera_colour_.Backward(view, rendered_, &loss_gradient_);
 
   gradients_.Resize(model_.size());
   mean2d_.resize(2 * model_.size());

@@ -34,6 +34,7 @@
 #include "render/render_context.h"
 #include "render/splat_backward.h"
 #include "train/adam_optimizer.h"
+#include "train/camera_colour.h"
 #include "train/densification.h"
 #include "train/gaussian_model.h"
 #include "train/learning_rate_schedule.h"
@@ -66,6 +67,10 @@ struct KeyframeTrainingOptions {
   int start_sh_degree = 0;        // active at the start (the model's degree when retraining)
   int sh_degree = 3;              // SH degree of a model TrainKeyframe initialises (0..3)
   double ssim_weight = kDefaultSsimWeight;
+  // Adam's rate for a colour gain and offset per training view (camera_colour.h; 0: none).
+  // Short() learns them (keyframes and their retraining); the lookahead fine-tuning, its
+  // colours frozen, does not.
+  float camera_colour_learning_rate = 0.0f;
   float background[3] = {0.0f, 0.0f, 0.0f};
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
   // Without points: this many Gaussians from photo_consistent_points.h, or uniform at random
@@ -153,6 +158,7 @@ class KeyframeTrainer {
   Image rendered_;
   Image loss_gradient_;
   std::vector<float> mean2d_;
+  CameraColour camera_colour_;
 
   PhotometricLossValue last_loss_;
   TrainingProgress progress_;
