@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "motion/motion_estimation.h"
+#include "motion/motion_mlp.h"
 #include "render/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "train/training_views.h"
@@ -113,6 +114,10 @@ TEST(MotionEstimationTest, LearnsATranslation) {
   }
   EXPECT_EQ(estimator.mlp().layers[0].weights, result.parameters.mlp.layers[0].weights);
   EXPECT_GT(result.rate_bits, 0.0);
+  // The shift is in the grid, not in the MLP's biases: zero features still do not move.
+  MlpBatch batch;
+  MlpForward(estimator.mlp(), Eigen::MatrixXf::Zero(SmallGrid().feature_count(), 1), &batch);
+  for (int o = 0; o < 7; ++o) EXPECT_NEAR(batch.outputs.back()(o, 0), 0.0f, 1e-6f) << o;
 }
 
 TEST(MotionEstimationTest, RateTermShrinksTheGrid) {

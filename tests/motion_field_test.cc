@@ -222,6 +222,34 @@ TEST(MotionFieldTest, ZeroGridAndInitialMlpDoNotMove) {
   for (size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(q[i], s.rotations[i], 1e-6f);
 }
 
+TEST(MotionFieldTest, ZeroMotionAtZeroFeaturesKeepsTheSlopes) {
+  const int features = 10;
+  MlpWeights mlp = InitialMotionMlp(features, MlpConfig{2, 16}, 1.0f, 5);
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> bias(-0.5f, 0.5f);
+  for (MlpLayer& layer : mlp.layers) {
+    for (float& b : layer.biases) b = bias(rng);
+  }
+  MlpWeights centred = mlp;
+  ZeroMotionAtZeroFeatures(&centred);
+  MlpBatch zero, a, b;
+  MlpForward(centred, Eigen::MatrixXf::Zero(features, 1), &zero);
+  for (int o = 0; o < 7; ++o) EXPECT_NEAR(zero.outputs.back()(o, 0), 0.0f, 1e-6f) << o;
+  // Only the last biases moved: outputs shift by the same constant for any features.
+  const Eigen::MatrixXf x = Eigen::MatrixXf::Random(features, 4);
+  MlpForward(mlp, x, &a);
+  MlpForward(centred, x, &b);
+  MlpBatch before;
+  MlpForward(mlp, Eigen::MatrixXf::Zero(features, 1), &before);
+  for (int i = 0; i < 4; ++i) {
+    for (int o = 0; o < 7; ++o) {
+      EXPECT_NEAR(b.outputs.back()(o, i), a.outputs.back()(o, i) - before.outputs.back()(o, 0),
+                  1e-5f);
+    }
+  }
+  EXPECT_GT(before.outputs.back().norm(), 0.1f);  // the random biases did move zero features
+}
+
 TEST(RigidUpdateTest, BackwardMatchesFiniteDifferences) {
   std::mt19937 rng(10);
   std::normal_distribution<double> n01;

@@ -224,6 +224,7 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
         mlp_adam[2 * j]->Step(&params.mlp.layers[j].weights, grad.mlp.layers[j].weights);
         mlp_adam[2 * j + 1]->Step(&params.mlp.layers[j].biases, grad.mlp.layers[j].biases);
       }
+      ZeroMotionAtZeroFeatures(&params.mlp);
     }
   }
   result->color_loss = color_count ? color_sum / color_count : 0.0;

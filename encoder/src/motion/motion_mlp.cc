@@ -41,6 +41,13 @@ MlpWeights ZeroLike(const MlpWeights& mlp) {
   return zero;
 }
 
+void ZeroMotionAtZeroFeatures(MlpWeights* mlp) {
+  MlpBatch batch;
+  MlpForward(*mlp, Eigen::MatrixXf::Zero(mlp->layers.front().inputs, 1), &batch);
+  std::vector<float>& biases = mlp->layers.back().biases;
+  for (size_t o = 0; o < biases.size(); ++o) biases[o] -= batch.outputs.back()(o, 0);
+}
+
 void MlpForward(const MlpWeights& mlp, const Eigen::MatrixXf& features, MlpBatch* batch) {
   const size_t layers = mlp.layers.size();
   batch->outputs.resize(layers);
