@@ -223,6 +223,41 @@ TEST(KeyframeTrainerTest, FrozenGroupsStayAndCapHolds) {
   EXPECT_NE(model.positions, start.positions);
 }
 
+// A cap per training pixel: 7 views of 64x48 at 0.01 per pixel allow 215 Gaussians, fewer
+// than densification.max_gaussians; densification fills it and stops there.
+TEST(KeyframeTrainerTest, PixelCapBoundsDensification) {
+  const Scene scene = MakeScene();
+  const Capture& capture = scene.capture;
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 120;
+  options.max_gaussians_per_pixel = 0.01f;
+  EXPECT_EQ(GaussianCap(options, train), 215u);
+  options.densification.max_gaussians = 100;
+  EXPECT_EQ(GaussianCap(options, train), 100u);
+  options.densification.max_gaussians = 2000;
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(capture.initial_points, PointInitialisationOptions(), &initial).ok());
+  ASSERT_EQ(initial.size(), 200u);
+  for (float per_pixel : {0.0f, 0.01f}) {
+    options.max_gaussians_per_pixel = per_pixel;
+    KeyframeTrainer trainer;
+    ASSERT_TRUE(trainer.Init(options, train, initial).ok());
+    ASSERT_TRUE(trainer.Train().ok());
+    if (per_pixel > 0) {
+      EXPECT_LE(trainer.model().size(), 215u);
+      EXPECT_GT(trainer.model().size(), 200u);
+    } else {
+      EXPECT_GT(trainer.model().size(), 215u);
+    }
+  }
+  options.max_gaussians_per_pixel = -1;
+  KeyframeTrainer trainer;
+  EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG);
+}
+
 TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
   Scene scene = MakeScene();
   scene.capture.initial_points = PointCloud();
@@ -235,6 +270,16 @@ TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
     ASSERT_TRUE(TrainKeyframe(scene.capture, 0, options, nullptr, &model).ok());
     EXPECT_GT(model.size(), 0u);
     for (float v : model.positions) ASSERT_TRUE(std::isfinite(v));
+  }
+  // The start, too, stays within the cap per pixel (7 views of 64x48 at 0.005: 107).
+  options.max_gaussians_per_pixel = 0.005f;
+  options.iterations = 1;
+  for (bool random : {false, true}) {
+    options.random_initialisation = random;
+    GaussianModel model;
+    ASSERT_TRUE(TrainKeyframe(scene.capture, 0, options, nullptr, &model).ok());
+    EXPECT_GT(model.size(), 0u);
+    EXPECT_LE(model.size(), 107u);
   }
 }
 
@@ -445,6 +490,8 @@ TEST(KeyframeTrainerTest, ShortScheduleMapsTheReference) {
   EXPECT_EQ(2 * s.densify_until, s.iterations);
   EXPECT_LT(s.opacity_reset_interval, s.densify_until);
   EXPECT_EQ(s.sh_degree_interval, 1000 * s.iterations / 30000);
+  EXPECT_EQ(ref.max_gaussians_per_pixel, 0.0f);
+  EXPECT_EQ(s.max_gaussians_per_pixel, 0.25f);
 }
 
 TEST(ProgressBarTest, FormatsTheLine) {

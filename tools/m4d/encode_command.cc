@@ -76,6 +76,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "at most this many Gaussians after densification (keyframes and retraining; "
                   "default: the schedule's 1000000)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--gaussians-per-pixel", a->gaussians_per_pixel,
+                  "at most this many Gaussians per pixel of the training views (keyframes and "
+                  "retraining; 0: no such cap; default 0.25)")
+      ->check(CLI::Range(0.0, 64.0));
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe uniform at random in the "
                 "cameras' box instead of from photo-consistent points");
@@ -225,6 +229,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_ply", args.keyframe_ply},
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
+          {"gaussians_per_pixel", KeyframeSchedule(args).max_gaussians_per_pixel},
           {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
@@ -264,6 +269,9 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
                                   ? KeyframeTrainingOptions::Short(args.keyframe_iterations)
                                   : args.encoder.keyframe;
   if (args.max_gaussians > 0) o.densification.max_gaussians = args.max_gaussians;
+  if (args.gaussians_per_pixel >= 0) {
+    o.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
+  }
   o.random_initialisation = args.random_init;
   return o;
 }

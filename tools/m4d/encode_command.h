@@ -20,15 +20,16 @@ namespace m4d {
 struct EncodeArguments {
   CaptureArguments capture;
   EncoderOptions encoder;
-  std::string rate_point;          // r1..r5, or empty for lambda's nearest
-  double lambda = 1e-4;            // lambda_2 when rate_point is empty (1e-4: r4)
-  int keyframe_iterations = 0;     // 0: the options' schedule
-  bool random_init = false;        // KeyframeTrainingOptions::random_initialisation
-  int max_gaussians = 0;           // cap of keyframe training and retraining (0: the schedule's)
-  std::string keyframe_ply;        // first keyframe read from here instead of trained
-  double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
-  double tau_g = -1;               // compensation's replication threshold (< 0: the rate point's)
-  std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
+  std::string rate_point;           // r1..r5, or empty for lambda's nearest
+  double lambda = 1e-4;             // lambda_2 when rate_point is empty (1e-4: r4)
+  int keyframe_iterations = 0;      // 0: the options' schedule
+  bool random_init = false;         // KeyframeTrainingOptions::random_initialisation
+  int max_gaussians = 0;            // cap of keyframe training and retraining (0: the schedule's)
+  double gaussians_per_pixel = -1;  // that cap per training pixel (< 0: the schedule's)
+  std::string keyframe_ply;         // first keyframe read from here instead of trained
+  double lambda3 = -1;              // compensation's lambda_3 (< 0: the default)
+  double tau_g = -1;                // compensation's replication threshold (< 0: the rate point's)
+  std::vector<int> keyframe_bits;   // 6 bit depths (empty: the rate point's)
   std::vector<int> compensation_bits;  // 6 bit depths (empty: the rate point's)
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
@@ -43,7 +44,8 @@ struct EncodeArguments {
 Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* options);
 
 // The keyframe training schedule the arguments ask for: the options' schedule, or the short
-// schedule scaled to keyframe_iterations, capped at max_gaussians.
+// schedule scaled to keyframe_iterations, capped at max_gaussians and
+// gaussians_per_pixel.
 KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args);
 
 // Adds the encoder's options (stages, GOP, ablations, rate) to a command.

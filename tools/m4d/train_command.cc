@@ -26,6 +26,7 @@ struct TrainArguments {
   int threads = 0;
   uint64_t seed = 1;
   bool random_init = false;
+  double gaussians_per_pixel = -1;  // < 0: the schedule's
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
@@ -45,6 +46,9 @@ Status RunTrain(const TrainArguments& args) {
   }
   options.sh_degree = args.sh_degree;
   options.random_initialisation = args.random_init;
+  if (args.gaussians_per_pixel >= 0) {
+    options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
+  }
   options.threads = args.threads;
   options.seed = args.seed;
   const auto start = std::chrono::steady_clock::now();
@@ -67,7 +71,7 @@ Status RunTrain(const TrainArguments& args) {
   std::printf("%-28s %d (%d views of %dx%d)\n", "frame", args.frame, train.size(),
               train.cameras[0].width, train.cameras[0].height);
   std::printf("%-28s %d\n", "iterations", options.iterations);
-  std::printf("%-28s %zu\n", "Gaussians", model.size());
+  std::printf("%-28s %zu (cap %zu)\n", "Gaussians", model.size(), GaussianCap(options, train));
   std::printf("%-28s %.1f s (%.1f ms per iteration)\n", "wall time", seconds,
               1000.0 * seconds / options.iterations);
   std::printf("%-28s %.2f dB  SSIM %.4f\n", "training views", train_quality.mean_psnr,
@@ -102,6 +106,10 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       "train", "train one frame's 3D Gaussians (the keyframe stage) and report its quality");
   AddCaptureArguments(cmd, &args->capture);
   cmd->add_option("--frame", args->frame, "frame to train")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--gaussians-per-pixel", args->gaussians_per_pixel,
+                  "at most this many Gaussians per pixel of the training views (0: no such "
+                  "cap; default 0.25, none with --reference-schedule)")
+      ->check(CLI::Range(0.0, 64.0));
   cmd->add_flag("--random-init", args->random_init,
                 "without initial points, start uniform at random in the cameras' box (the "
                 "reference's way) instead of from photo-consistent points");

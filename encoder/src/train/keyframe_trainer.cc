@@ -18,6 +18,7 @@ namespace m4d {
 namespace {
 
 constexpr double kEmaWeight = 0.4;  // of the newest value, as the reference's progress bar
+constexpr float kShortGaussiansPerPixel = 0.25f;  // keyframe_trainer.h, Short()
 
 Status OptionError(const std::string& what) {
   return Status(M4D_ERR_INVALID_ARG, "keyframe training options: " + what);
@@ -43,12 +44,22 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   // follows the reset (a 100-iteration wait outlasted the window below 1400 iterations).
   o.reset_recovery = std::clamp((o.densify_until - o.opacity_reset_interval) / 2, 1, 100);
   o.densification.max_gaussians = 1000000;
+  o.max_gaussians_per_pixel = kShortGaussiansPerPixel;
   o.densification.max_prune_fraction = 0.5f;
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
   // the floor near the cameras of a 640x360 capture.
   o.densification.max_screen_radius = 0.0f;
   o.camera_colour_learning_rate = 2e-3f;
   return o;
+}
+
+size_t GaussianCap(const KeyframeTrainingOptions& options, const TrainingViews& views) {
+  const size_t cap = options.densification.max_gaussians;
+  if (!(options.max_gaussians_per_pixel > 0.0f)) return cap;
+  double pixels = 0;
+  for (const Camera& c : views.cameras) pixels += static_cast<double>(c.width) * c.height;
+  const double per_pixel = std::max(1.0, std::floor(options.max_gaussians_per_pixel * pixels));
+  return per_pixel < static_cast<double>(cap) ? static_cast<size_t>(per_pixel) : cap;
 }
 
 Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
@@ -63,6 +74,9 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (!(o.ssim_weight >= 0.0 && o.ssim_weight <= 1.0)) return OptionError("SSIM weight");
   if (!(o.camera_colour_learning_rate >= 0.0f && o.camera_colour_learning_rate <= 1.0f)) {
     return OptionError("camera colour learning rate");
+  }
+  if (!(o.max_gaussians_per_pixel >= 0.0f) || !std::isfinite(o.max_gaussians_per_pixel)) {
+    return OptionError("Gaussians per pixel");
   }
   if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
     return OptionError("opacity reset value");
@@ -100,6 +114,7 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
     return LimitError("keyframe training: too many Gaussians");
   }
   options_ = options;
+  options_.densification.max_gaussians = GaussianCap(options, views);
   scene_extent_ =
       options.scene_extent > 0.0f ? options.scene_extent : CameraSceneBounds(views.cameras).extent;
   if (!(scene_extent_ > 0.0f)) {
@@ -256,12 +271,13 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
   PointInitialisationOptions init;
   init.threads = options.threads;
   init.sh_degree = options.sh_degree;
+  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
   GaussianModel initial;
   if (capture.initial_points.size() > 0) {
     M4D_RETURN_IF_ERROR(InitialiseFromPoints(capture.initial_points, init, &initial));
   } else if (!options.random_initialisation) {
     PhotoConsistencyOptions photo;
-    photo.points = options.random_points;
+    photo.points = start_points;
     photo.seed = options.seed;
     photo.threads = options.threads;
     PointCloud points;
@@ -278,8 +294,7 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
       lo[a] = bounds.centre[a] - bounds.extent;
       hi[a] = bounds.centre[a] + bounds.extent;
     }
-    M4D_RETURN_IF_ERROR(
-        InitialiseRandom(lo, hi, options.random_points, options.seed, init, &initial));
+    M4D_RETURN_IF_ERROR(InitialiseRandom(lo, hi, start_points, options.seed, init, &initial));
   }
   KeyframeTrainer trainer;
   M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
