@@ -50,9 +50,10 @@ struct KeyframeTrainingOptions {
   // The position rate decays over learning_rates.position.max_steps.
   GaussianLearningRates learning_rates;
   DensificationSettings densification;
-  // Caps densification.max_gaussians (and the points a model starts from) at this many
-  // Gaussians per pixel of the training views (0: no such cap). What more Gaussians than the
-  // views resolve add is fitted noise: see Short().
+  // Caps densification.max_gaussians at this many Gaussians per pixel of the training views
+  // (0: no such cap), and with it the points drawn for a capture without any (a capture's own
+  // points are kept: densification then only refills what pruning removes). What more
+  // Gaussians than the views resolve add is fitted noise: see Short().
   float max_gaussians_per_pixel = 0.0f;
   int densify_from = 500;     // densify only after this iteration
   int densify_until = 15000;  // statistics, densification and resets before it (0: none)
