@@ -93,10 +93,17 @@ void SetSource(const GaussianSet& set, GroupPlan* plan) {
   }
 }
 
-// Chooses bits, per_component and (min, step). Positions get a range per axis; the other
-// groups share one step across components, which gives every component the same absolute
-// error (the lowest total squared error for the rate). A group whose components are each
-// constant costs nothing: bits 0 and one min per component.
+// Higher SH coefficients and rotation components cluster at zero (view-independent colour,
+// axis-aligned Gaussians): a level at exactly zero keeps them there. Without it, the 3-bit
+// higher SH of the default scene's keyframe cost 1.1 dB on the held-out view (37.22 against
+// 38.36 unquantized); with it, 0.3 dB.
+bool HasZeroLevel(int group) { return group == kGroupRotation || group >= kGroupShRest; }
+
+// Chooses bits, per_component and (min, step). Positions get their full range per axis; the
+// other groups share one step across components, which gives every component the same
+// absolute error (the lowest total squared error for the rate), some with a level at zero
+// (the largest value may then clamp, by at most half a step more). A group whose components are
+// each constant costs nothing: bits 0 and one min per component.
 Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
   const int c = plan->components;
   std::vector<float> lo(c), hi(c);
@@ -130,6 +137,11 @@ Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
     }
     plan->min.push_back(lo[p]);
     plan->step.push_back(step);
+  }
+  const float step = plan->step[0], top = plan->min[0] + static_cast<float>(levels) * step;
+  if (HasZeroLevel(plan->group) && !plan->per_component && plan->min[0] < 0.0f && top > 0.0f) {
+    plan->min[0] =
+        -static_cast<float>(std::round(-static_cast<double>(plan->min[0]) / step)) * step;
   }
   return Status::Ok();
 }
