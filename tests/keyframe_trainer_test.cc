@@ -258,6 +258,37 @@ TEST(KeyframeTrainerTest, PixelCapBoundsDensification) {
   EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG);
 }
 
+TEST(KeyframeTrainerTest, ImportancePruningWhenDensificationEnds) {
+  const Scene scene = MakeScene();
+  const Capture& capture = scene.capture;
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 260;  // densification until 250
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(capture.initial_points, PointInitialisationOptions(), &initial).ok());
+  KeyframeTrainer whole, pruned;
+  ASSERT_TRUE(whole.Init(options, train, initial).ok());
+  ASSERT_TRUE(whole.Train().ok());
+  options.importance_prune_share = 0.05f;
+  ASSERT_TRUE(pruned.Init(options, train, initial).ok());
+  ASSERT_TRUE(pruned.Train().ok());
+  // The runs are the same until iteration 250; nothing is added after it.
+  EXPECT_EQ(whole.importance_pruned(), 0u);
+  EXPECT_GT(pruned.importance_pruned(), whole.model().size() / 20);
+  EXPECT_EQ(pruned.model().size() + pruned.importance_pruned(), whole.model().size());
+  EvaluationResult whole_quality, pruned_quality;
+  ASSERT_TRUE(whole.Evaluate(train, &whole_quality).ok());
+  ASSERT_TRUE(pruned.Evaluate(train, &pruned_quality).ok());
+  EXPECT_GT(pruned_quality.mean_psnr, whole_quality.mean_psnr - 1.0);
+  for (float share : {-0.1f, 1.0f}) {
+    options.importance_prune_share = share;
+    KeyframeTrainer trainer;
+    EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG) << share;
+  }
+}
+
 TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
   Scene scene = MakeScene();
   scene.capture.initial_points = PointCloud();

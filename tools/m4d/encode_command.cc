@@ -80,6 +80,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "at most this many Gaussians per pixel of the training views (keyframes and "
                   "retraining; 0: no such cap; default 0.25)")
       ->check(CLI::Range(0.0, 64.0));
+  cmd->add_option("--prune-share", a->prune_share,
+                  "when densification ends (keyframes and retraining), remove the least "
+                  "important Gaussians holding this share of the views' blending weight (0, the "
+                  "default: none)")
+      ->check(CLI::Range(0.0, 0.99));
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe uniform at random in the "
                 "cameras' box instead of from photo-consistent points");
@@ -230,6 +235,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"gaussians_per_pixel", KeyframeSchedule(args).max_gaussians_per_pixel},
+          {"importance_prune_share", KeyframeSchedule(args).importance_prune_share},
           {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
@@ -272,6 +278,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   if (args.gaussians_per_pixel >= 0) {
     o.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
+  if (args.prune_share >= 0) o.importance_prune_share = static_cast<float>(args.prune_share);
   o.random_initialisation = args.random_init;
   return o;
 }

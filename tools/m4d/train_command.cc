@@ -27,6 +27,7 @@ struct TrainArguments {
   uint64_t seed = 1;
   bool random_init = false;
   double gaussians_per_pixel = -1;  // < 0: the schedule's
+  double prune_share = -1;          // < 0: the schedule's
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
@@ -49,6 +50,7 @@ Status RunTrain(const TrainArguments& args) {
   if (args.gaussians_per_pixel >= 0) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
+  if (args.prune_share >= 0) options.importance_prune_share = static_cast<float>(args.prune_share);
   options.threads = args.threads;
   options.seed = args.seed;
   const auto start = std::chrono::steady_clock::now();
@@ -110,6 +112,10 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "at most this many Gaussians per pixel of the training views (0: no such "
                   "cap; default 0.25, none with --reference-schedule)")
       ->check(CLI::Range(0.0, 64.0));
+  cmd->add_option("--prune-share", args->prune_share,
+                  "when densification ends, remove the least important Gaussians holding this "
+                  "share of the views' blending weight (0, the default: none)")
+      ->check(CLI::Range(0.0, 0.99));
   cmd->add_flag("--random-init", args->random_init,
                 "without initial points, start uniform at random in the cameras' box (the "
                 "reference's way) instead of from photo-consistent points");

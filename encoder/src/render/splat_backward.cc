@@ -90,7 +90,7 @@ void BackpropagateGaussians(const SplatGradients& out, RenderContext* ctx,
                           if (ctx->splats.radius[g] == 0.0f) {
                             if (!frozen) ZeroGradients(layer, i, out.layers[l]);
                           } else if (frozen) {
-                            if (out.mean2d) grad = GatherSplatGradient(*ctx, ws, g);
+                            if (out.mean2d || out.color) grad = GatherSplatGradient(*ctx, ws, g);
                           } else {
                             grad = GatherSplatGradient(*ctx, ws, g);
                             BackpropagateProjection(pc, layer, ctx->settings.sh_degree, i, grad,
@@ -100,6 +100,7 @@ void BackpropagateGaussians(const SplatGradients& out, RenderContext* ctx,
                             out.mean2d[2 * g] = grad.mean[0];
                             out.mean2d[2 * g + 1] = grad.mean[1];
                           }
+                          if (out.color) std::copy_n(grad.color, 3, out.color + 3 * g);
                         }
                         offset += layer.count;
                       }

@@ -26,6 +26,10 @@ struct SplatGradients {
   // Optional, 2 per Gaussian (global index): dL/d(projected mean) in pixels, the view-space
   // gradient of densification (see viewspace_gradient.h for the reference's units).
   float* mean2d = nullptr;
+  // Optional, 3 per Gaussian (global index): dL/d(the splat's colour) before the clamp and the
+  // SH basis. With dL/dcolour 1 everywhere, a splat's blending weight alpha T summed over the
+  // view's pixels, for any colour (importance_pruning.h).
+  float* color = nullptr;
 };
 
 // Scratch of the backward pass, reused between calls.

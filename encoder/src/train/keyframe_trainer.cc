@@ -10,6 +10,7 @@
 #include "metrics/psnr.h"
 #include "render/splat_renderer.h"
 #include "train/gaussian_optimizer.h"
+#include "train/importance_pruning.h"
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/scene_extent.h"
@@ -77,6 +78,9 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   }
   if (!(o.max_gaussians_per_pixel >= 0.0f) || !std::isfinite(o.max_gaussians_per_pixel)) {
     return OptionError("Gaussians per pixel");
+  }
+  if (!(o.importance_prune_share >= 0.0f && o.importance_prune_share < 1.0f)) {
+    return OptionError("importance prune share outside [0, 1)");
   }
   if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
     return OptionError("opacity reset value");
@@ -204,6 +208,17 @@ Status KeyframeTrainer::Densify() {
   return Status::Ok();
 }
 
+Status KeyframeTrainer::PruneUnimportant() {
+  std::vector<double> weights;
+  M4D_RETURN_IF_ERROR(
+      BlendingWeights(model_, views_, Settings(), &context_, &backward_workspace_, &weights));
+  const std::vector<uint8_t> keep = KeepImportant(weights, options_.importance_prune_share);
+  const size_t before = model_.size();
+  KeepGaussians(keep, &model_, &optimizer_, nullptr);
+  importance_pruned_ += before - model_.size();
+  return Status::Ok();
+}
+
 Status KeyframeTrainer::Step() {
   if (!rng_) return Status(M4D_ERR_INVALID_ARG, "keyframe training: not initialised");
   const int it = ++iteration_;
@@ -231,6 +246,10 @@ Status KeyframeTrainer::Step() {
       skip = kParamOpacityLogits;
       last_reset_ = it;
     }
+  }
+  if (options_.importance_prune_share > 0.0f && it == options_.densify_until) {
+    M4D_RETURN_IF_ERROR(PruneUnimportant());
+    densified = true;  // this iteration's gradients belong to the Gaussians before pruning
   }
   if (!densified) StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
   progress_.iteration = it;

@@ -1,0 +1,33 @@
+// Importance pruning (LightGaussian, Fan et al. 2023, without its volume term): a Gaussian's
+// importance is its blending weight alpha T summed over every pixel of the training views,
+// what it adds to the images whatever its colour. Densification stops at the views'
+// gradients, not at what each Gaussian contributes; the least important Gaussians left then
+// cost the keyframe bytes (about 10 each) for what the fine-tuning that follows restores.
+#ifndef M4D_ENCODER_TRAIN_IMPORTANCE_PRUNING_H_
+#define M4D_ENCODER_TRAIN_IMPORTANCE_PRUNING_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "common/status.h"
+#include "render/render_context.h"
+#include "render/render_settings.h"
+#include "render/splat_backward.h"
+#include "train/gaussian_model.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+// Each Gaussian's blending weight summed over the views (one render and one backward pass
+// per view; `context` and `workspace` are reused buffers).
+Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
+                       const RenderSettings& settings, RenderContext* context,
+                       BackwardWorkspace* workspace, std::vector<double>* weights);
+
+// keep[i] = 0 for the least important Gaussians whose weights sum to at most `share` of the
+// total (ties broken by index), 1 for the others.
+std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_TRAIN_IMPORTANCE_PRUNING_H_
