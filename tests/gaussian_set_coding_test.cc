@@ -257,6 +257,38 @@ TEST(GaussianSetCodingTest, DefaultQuantizationRoundTrips) {
   }
 }
 
+TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
+  for (int degree : {0, 1, 3}) {
+    SCOPED_TRACE(degree);
+    GaussianSet set = RandomSet(1500, degree, 20 + degree);
+    SetIds(&set);
+    GaussianQuantization q = WithIds(GaussianQuantization());
+    q.sh_rest_bits = 3;
+    for (size_t i = 0; i < 10; ++i) set.sh[i * set.sh_floats() + 3] = 0.0f;  // a group's zeros
+    GaussianSet decoded, quantized = set;
+    ASSERT_TRUE(ReconstructGaussianSet(set, q, &decoded).ok());
+    ASSERT_TRUE(QuantizeGaussianSet(q, &quantized).ok());
+    ASSERT_EQ(quantized.size(), set.size());
+    EXPECT_NE(quantized.positions, set.positions);
+    for (size_t j = 0; j < decoded.size(); ++j) {
+      const size_t i = static_cast<size_t>(std::lround(decoded.opacity_logits[j]));  // its id
+      ASSERT_LT(i, set.size());
+      for (int group = 0; group < kNumGaussianGroups; ++group) {
+        for (int r = 0; r < GaussianGroupComponents(group, degree); ++r) {
+          ASSERT_TRUE(SameBits(Component(quantized, group, i, r), Component(decoded, group, j, r)))
+              << "group " << group << " Gaussian " << i;
+        }
+      }
+    }
+    if (degree > 0) {
+      for (size_t i = 0; i < 10; ++i) EXPECT_EQ(quantized.sh[i * set.sh_floats() + 3], 0.0f);
+    }
+  }
+  GaussianSet bad = RandomSet(10, 1, 1);
+  bad.positions.pop_back();
+  EXPECT_EQ(QuantizeGaussianSet(GaussianQuantization(), &bad).code(), M4D_ERR_INVALID_ARG);
+}
+
 TEST(GaussianSetCodingTest, EmptySetIsOneByte) {
   GaussianSet set;
   set.sh_degree = 2;

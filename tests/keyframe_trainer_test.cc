@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "dataset/capture.h"
+#include "layers/gaussian_set_writer.h"
+#include "metrics/photometric_loss.h"
 #include "render/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "train/gaussian_model.h"
@@ -289,6 +292,65 @@ TEST(KeyframeTrainerTest, ImportancePruningWhenDensificationEnds) {
   }
 }
 
+// Loss of `model` rendered from the single view of `views` (unclamped, as the trainer).
+double ViewLoss(const GaussianModel& model, const TrainingViews& views) {
+  RenderSettings settings;
+  settings.sh_degree = 0;
+  RenderContext context;
+  const GaussianLayerView layer = LayerView(model);
+  EXPECT_TRUE(RenderForward(views.cameras[0], &layer, 1, settings, nullptr, &context).ok());
+  Image rendered(views.cameras[0].width, views.cameras[0].height, 3);
+  std::copy(context.color.begin(), context.color.end(), rendered.pixels.begin());
+  PhotometricLoss loss;
+  PhotometricLossValue value;
+  EXPECT_TRUE(loss.Evaluate(rendered, views.images[0], &value).ok());
+  return value.loss;
+}
+
+TEST(KeyframeTrainerTest, QuantizationAwareIterationsRenderTheCodedModel) {
+  const Scene scene = MakeScene();
+  TrainingViews view;
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, {2}, &view).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), &initial)
+          .ok());
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 2;
+  options.scene_extent = 2.0f;             // one camera has none of its own
+  options.quantization.position_bits = 6;  // coarse enough to change the loss
+  options.quantization.log_scale_bits = 3;
+  GaussianSet set;
+  ASSERT_TRUE(ModelToGaussianSet(initial, initial.sh_degree, &set).ok());
+  ASSERT_TRUE(QuantizeGaussianSet(options.quantization, &set).ok());
+  GaussianModel quantized;
+  ASSERT_TRUE(ModelFromGaussianSet(set, initial.sh_degree, &quantized).ok());
+  const double float_loss = ViewLoss(initial, view), coded_loss = ViewLoss(quantized, view);
+  ASSERT_GT(std::fabs(coded_loss - float_loss), 1e-5);  // far above the tolerance below
+  for (int aware : {0, 1}) {
+    options.quantization_aware_iterations = aware;  // the last iteration only
+    KeyframeTrainer trainer;
+    ASSERT_TRUE(trainer.Init(options, view, initial).ok());
+    ASSERT_TRUE(trainer.Step().ok());
+    EXPECT_NEAR(trainer.last_loss().loss, float_loss, 1e-9) << aware;
+    GaussianSet before;
+    ASSERT_TRUE(ModelToGaussianSet(trainer.model(), initial.sh_degree, &before).ok());
+    ASSERT_TRUE(QuantizeGaussianSet(options.quantization, &before).ok());
+    GaussianModel expected;
+    ASSERT_TRUE(ModelFromGaussianSet(before, initial.sh_degree, &expected).ok());
+    const GaussianModel float_before = trainer.model();
+    ASSERT_TRUE(trainer.Step().ok());
+    const double rendered = aware ? ViewLoss(expected, view) : ViewLoss(float_before, view);
+    EXPECT_NEAR(trainer.last_loss().loss, rendered, 1e-9) << aware;
+    // The step moves the unquantized values (straight-through), not the quantized ones.
+    EXPECT_NE(trainer.model().positions, expected.positions);
+    EXPECT_NE(trainer.model().positions, float_before.positions);
+  }
+  options.quantization_aware_iterations = -1;
+  KeyframeTrainer trainer;
+  EXPECT_EQ(trainer.Init(options, view, initial).code(), M4D_ERR_INVALID_ARG);
+}
+
 TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
   Scene scene = MakeScene();
   scene.capture.initial_points = PointCloud();
@@ -523,6 +585,8 @@ TEST(KeyframeTrainerTest, ShortScheduleMapsTheReference) {
   EXPECT_EQ(s.sh_degree_interval, 1000 * s.iterations / 30000);
   EXPECT_EQ(ref.max_gaussians_per_pixel, 0.0f);
   EXPECT_EQ(s.max_gaussians_per_pixel, 0.25f);
+  EXPECT_EQ(ref.quantization_aware_iterations, 0);
+  EXPECT_EQ(s.quantization_aware_iterations, 1750);
 }
 
 TEST(ProgressBarTest, FormatsTheLine) {

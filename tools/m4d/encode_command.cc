@@ -80,6 +80,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "at most this many Gaussians per pixel of the training views (keyframes and "
                   "retraining; 0: no such cap; default 0.25)")
       ->check(CLI::Range(0.0, 64.0));
+  cmd->add_option("--quantization-aware", a->quantization_aware,
+                  "the last N iterations of the first keyframe's training render it as coded "
+                  "(default: a quarter of the run; retraining: a quarter of its run; 0: none)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--prune-share", a->prune_share,
                   "when densification ends (keyframes and retraining), remove the least "
                   "important Gaussians holding this share of the views' blending weight (0, the "
@@ -236,6 +240,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"gaussians_per_pixel", KeyframeSchedule(args).max_gaussians_per_pixel},
           {"importance_prune_share", KeyframeSchedule(args).importance_prune_share},
+          {"quantization_aware_iterations", KeyframeSchedule(args).quantization_aware_iterations},
           {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
@@ -278,6 +283,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   if (args.gaussians_per_pixel >= 0) {
     o.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
+  if (args.quantization_aware >= 0) o.quantization_aware_iterations = args.quantization_aware;
   if (args.prune_share >= 0) o.importance_prune_share = static_cast<float>(args.prune_share);
   o.random_initialisation = args.random_init;
   return o;

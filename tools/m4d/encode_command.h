@@ -26,11 +26,13 @@ struct EncodeArguments {
   bool random_init = false;         // KeyframeTrainingOptions::random_initialisation
   int max_gaussians = 0;            // cap of keyframe training and retraining (0: the schedule's)
   double gaussians_per_pixel = -1;  // that cap per training pixel (< 0: the schedule's)
-  double prune_share = -1;          // importance pruning of keyframe training (< 0: the schedule's)
-  std::string keyframe_ply;         // first keyframe read from here instead of trained
-  double lambda3 = -1;              // compensation's lambda_3 (< 0: the default)
-  double tau_g = -1;                // compensation's replication threshold (< 0: the rate point's)
-  std::vector<int> keyframe_bits;   // 6 bit depths (empty: the rate point's)
+  int quantization_aware =
+      -1;  // quantization-aware iterations of keyframe training (< 0: the schedule's)
+  double prune_share = -1;         // importance pruning of keyframe training (< 0: the schedule's)
+  std::string keyframe_ply;        // first keyframe read from here instead of trained
+  double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
+  double tau_g = -1;               // compensation's replication threshold (< 0: the rate point's)
+  std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::vector<int> compensation_bits;  // 6 bit depths (empty: the rate point's)
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
@@ -46,7 +48,7 @@ Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* option
 
 // The keyframe training schedule the arguments ask for: the options' schedule, or the short
 // schedule scaled to keyframe_iterations, capped at max_gaussians and
-// gaussians_per_pixel, pruned by prune_share.
+// gaussians_per_pixel, pruned by prune_share, quantization_aware iterations at the end.
 KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args);
 
 // Adds the encoder's options (stages, GOP, ablations, rate) to a command.

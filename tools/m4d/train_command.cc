@@ -1,13 +1,18 @@
 #include "train_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "capture_arguments.h"
 #include "command_status.h"
+#include "common/byte_writer.h"
 #include "image/png_io.h"
+#include "layers/gaussian_set_writer.h"
+#include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
@@ -28,9 +33,48 @@ struct TrainArguments {
   bool random_init = false;
   double gaussians_per_pixel = -1;  // < 0: the schedule's
   double prune_share = -1;          // < 0: the schedule's
+  int quantization_aware = -1;      // iterations (< 0: the schedule's)
+  std::string rate_point = "r4";    // the keyframe bits the model is trained and coded for
+  std::vector<int> keyframe_bits;   // 6 bit depths (empty: the rate point's)
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
+
+Status TrainingQuantization(const TrainArguments& args, GaussianQuantization* quantization) {
+  RatePointSettings point;
+  M4D_RETURN_IF_ERROR(FindRatePoint(args.rate_point, &point));
+  *quantization = point.keyframe;
+  if (args.keyframe_bits.size() == 6) {
+    quantization->position_bits = args.keyframe_bits[0];
+    quantization->log_scale_bits = args.keyframe_bits[1];
+    quantization->rotation_bits = args.keyframe_bits[2];
+    quantization->opacity_bits = args.keyframe_bits[3];
+    quantization->sh_dc_bits = args.keyframe_bits[4];
+    quantization->sh_rest_bits = args.keyframe_bits[5];
+  }
+  return Status::Ok();
+}
+
+// Held-out quality of the model as the keyframe coder reconstructs it, and its size.
+Status PrintCodedQuality(const GaussianModel& model, int sh_degree,
+                         const GaussianQuantization& quantization, const TrainingViews& test,
+                         const RenderSettings& settings) {
+  GaussianSet set, decoded;
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, sh_degree, &set));
+  std::vector<uint8_t> bytes;
+  ByteWriter writer(&bytes);
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(set, quantization, &writer));
+  M4D_RETURN_IF_ERROR(ReconstructGaussianSet(set, quantization, &decoded));
+  GaussianModel coded;
+  M4D_RETURN_IF_ERROR(ModelFromGaussianSet(decoded, sh_degree, &coded));
+  EvaluationResult quality;
+  M4D_RETURN_IF_ERROR(EvaluateViews(coded, test, settings, nullptr, &quality));
+  std::printf("%-28s %s: %.1f KB (%.2f bytes per Gaussian), held-out %.2f dB  SSIM %.4f\n",
+              "coded as a keyframe", QuantizationName(quantization).c_str(), bytes.size() / 1000.0,
+              static_cast<double>(bytes.size()) / std::max<size_t>(1, set.size()),
+              quality.mean_psnr, quality.mean_ssim);
+  return Status::Ok();
+}
 
 Status RunTrain(const TrainArguments& args) {
   Capture capture;
@@ -51,6 +95,8 @@ Status RunTrain(const TrainArguments& args) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
   if (args.prune_share >= 0) options.importance_prune_share = static_cast<float>(args.prune_share);
+  if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
+  M4D_RETURN_IF_ERROR(TrainingQuantization(args, &options.quantization));
   options.threads = args.threads;
   options.seed = args.seed;
   const auto start = std::chrono::steady_clock::now();
@@ -83,6 +129,8 @@ Status RunTrain(const TrainArguments& args) {
     M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &test_quality));
     std::printf("%-28s %.2f dB  SSIM %.4f\n", "held-out camera", test_quality.mean_psnr,
                 test_quality.mean_ssim);
+    M4D_RETURN_IF_ERROR(
+        PrintCodedQuality(model, args.sh_degree, options.quantization, test, settings));
     if (!args.render.empty()) {
       Image rendered;
       RenderContext context;
@@ -116,6 +164,19 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "when densification ends, remove the least important Gaussians holding this "
                   "share of the views' blending weight (0, the default: none)")
       ->check(CLI::Range(0.0, 0.99));
+  cmd->add_option("--quantization-aware", args->quantization_aware,
+                  "the last N iterations render the model as coded at the rate point (default: "
+                  "a quarter of the run; 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rate-point", args->rate_point,
+                  "the rate point whose keyframe bits the model is trained for (quantization-"
+                  "aware) and coded at in the report")
+      ->capture_default_str();
+  cmd->add_option("--keyframe-bits", args->keyframe_bits,
+                  "those bits instead: position,scale,rotation,opacity,color,sh")
+      ->expected(6)
+      ->delimiter(',')
+      ->check(CLI::Range(1, 24));
   cmd->add_flag("--random-init", args->random_init,
                 "without initial points, start uniform at random in the cameras' box (the "
                 "reference's way) instead of from photo-consistent points");

@@ -269,10 +269,9 @@ Status EncodeDraco(size_t n, const std::vector<GroupPlan*>& coded, int speed,
   return Status::Ok();
 }
 
-}  // namespace
-
-Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
-                        ByteWriter* out) {
+// Checks the set and the bit depths, and plans every group with components.
+Status PlanGroups(const GaussianSet& set, const GaussianQuantization& quantization,
+                  std::vector<GroupPlan>* plans) {
   if (set.sh_degree < 0 || set.sh_degree > 3) return InvalidArg("SH degree outside 0..3");
   const size_t n = set.size();
   if (set.positions.size() != 3 * n || set.log_scales.size() != 3 * n ||
@@ -287,11 +286,8 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
     const int bits = RequestedBits(group, quantization);
     if (bits < 0 || bits > kMaxAttributeBits) return InvalidArg("bits outside 0..24");
   }
-  if (n == 0) {
-    out->WriteVarUint(0);
-    return Status::Ok();
-  }
-  std::vector<GroupPlan> plans;
+  plans->clear();
+  if (n == 0) return Status::Ok();
   for (int group = 0; group < kNumGaussianGroups; ++group) {
     GroupPlan plan;
     plan.group = group;
@@ -299,7 +295,21 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
     if (plan.components == 0) continue;
     SetSource(set, &plan);
     M4D_RETURN_IF_ERROR(PlanQuantization(n, RequestedBits(group, quantization), &plan));
-    plans.push_back(std::move(plan));
+    plans->push_back(std::move(plan));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                        ByteWriter* out) {
+  std::vector<GroupPlan> plans;
+  M4D_RETURN_IF_ERROR(PlanGroups(set, quantization, &plans));
+  const size_t n = set.size();
+  if (n == 0) {
+    out->WriteVarUint(0);
+    return Status::Ok();
   }
 
   const std::vector<uint32_t> order = CodingOrder(n, plans[kGroupPosition]);
@@ -330,6 +340,26 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
 }  // namespace m4d
 
 namespace m4d {
+
+Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set) {
+  std::vector<GroupPlan> plans;
+  M4D_RETURN_IF_ERROR(PlanGroups(*set, quantization, &plans));
+  std::vector<uint32_t> order(set->size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
+  for (GroupPlan& plan : plans) {
+    Quantize(order, &plan);
+    float* values = const_cast<float*>(plan.source);  // plan.source points into *set
+    for (size_t i = 0; i < order.size(); ++i) {
+      for (int r = 0; r < plan.components; ++r) {
+        const int p = plan.per_component ? r : 0;
+        // As the decoder (spec 5.4): one f32 product, one f32 sum.
+        const float product = static_cast<float>(plan.q[i * plan.components + r]) * plan.step[p];
+        values[i * plan.stride + r] = plan.min[p] + product;
+      }
+    }
+  }
+  return Status::Ok();
+}
 
 Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
                               GaussianSet* decoded) {

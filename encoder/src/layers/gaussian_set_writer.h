@@ -31,6 +31,11 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
 Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
                               GaussianSet* decoded);
 
+// Replaces every value of `set` by the one a decoder reconstructs from WriteGaussianSet's
+// output (same ranges and rounding; the set keeps its order), without coding it: the
+// forward pass of quantization-aware training.
+Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set);
+
 }  // namespace m4d
 
 #endif  // M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_

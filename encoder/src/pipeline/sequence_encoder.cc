@@ -235,6 +235,7 @@ Status SequenceEncoder::ScratchKeyframe(int frame, GaussianModel* model) {
     o.sh_degree = options_.sh_degree;
     o.threads = options_.threads;
     o.seed = options_.seed;
+    o.quantization = options_.quantization;
     std::copy(options_.background, options_.background + 3, o.background);
     return TrainKeyframe(
         capture_, frame, o,
@@ -463,6 +464,9 @@ Status SequenceEncoder::Restart(int frame) {
   o.densify_interval = std::max(1, options_.retrain_iterations / 20);
   o.opacity_reset_interval = 0;
   o.sh_degree_interval = 0;
+  o.quantization_aware_iterations =
+      options_.keyframe.quantization_aware_iterations > 0 ? options_.retrain_iterations / 4 : 0;
+  o.quantization = options_.quantization;
   o.start_sh_degree = options_.sh_degree;
   o.threads = options_.threads;
   o.seed = options_.seed + static_cast<uint64_t>(frame);

@@ -46,6 +46,7 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   o.reset_recovery = std::clamp((o.densify_until - o.opacity_reset_interval) / 2, 1, 100);
   o.densification.max_gaussians = 1000000;
   o.max_gaussians_per_pixel = kShortGaussiansPerPixel;
+  o.quantization_aware_iterations = iterations / 4;
   o.densification.max_prune_fraction = 0.5f;
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
   // the floor near the cameras of a 640x360 capture.
@@ -79,6 +80,7 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (!(o.max_gaussians_per_pixel >= 0.0f) || !std::isfinite(o.max_gaussians_per_pixel)) {
     return OptionError("Gaussians per pixel");
   }
+  if (o.quantization_aware_iterations < 0) return OptionError("negative quantization-aware count");
   if (!(o.importance_prune_share >= 0.0f && o.importance_prune_share < 1.0f)) {
     return OptionError("importance prune share outside [0, 1)");
   }
@@ -168,7 +170,13 @@ RenderSettings KeyframeTrainer::Settings() const {
 Status KeyframeTrainer::ForwardBackward(int view) {
   const Camera& camera = views_.cameras[view];
   const Image& target = views_.images[view];
-  const GaussianLayerView layer = LayerView(model_);
+  if (QuantizationAware()) {
+    GaussianSet set;
+    M4D_RETURN_IF_ERROR(ModelToGaussianSet(model_, model_.sh_degree, &set));
+    M4D_RETURN_IF_ERROR(QuantizeGaussianSet(options_.quantization, &set));
+    M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, model_.sh_degree, &quantized_));
+  }
+  const GaussianLayerView layer = LayerView(QuantizationAware() ? quantized_ : model_);
   M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, Settings(), nullptr, &context_));
   Reshape(camera.width, camera.height, 3, &rendered_);
   std::copy(context_.color.begin(), context_.color.end(), rendered_.pixels.begin());
@@ -206,6 +214,10 @@ Status KeyframeTrainer::Densify() {
   densify_totals_.split += counts.split;
   densify_totals_.pruned += counts.pruned;
   return Status::Ok();
+}
+
+bool KeyframeTrainer::QuantizationAware() const {
+  return iteration_ > options_.iterations - options_.quantization_aware_iterations;
 }
 
 Status KeyframeTrainer::PruneUnimportant() {

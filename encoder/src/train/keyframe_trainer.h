@@ -30,6 +30,7 @@
 #include "common/thread_pool.h"
 #include "dataset/capture.h"
 #include "image/image.h"
+#include "layers/gaussian_set_writer.h"
 #include "metrics/photometric_loss.h"
 #include "render/render_context.h"
 #include "render/splat_backward.h"
@@ -59,6 +60,11 @@ struct KeyframeTrainingOptions {
   // together hold this share of the views' blending weight are removed (importance_pruning.h;
   // 0: none); the rest of the run fine-tunes the others.
   float importance_prune_share = 0.0f;
+  // The last this-many iterations render the model as the keyframe coder at `quantization`
+  // will reconstruct it, and apply the gradients to the unquantized values (straight-through):
+  // the model learns values whose quantization renders well (0: none).
+  int quantization_aware_iterations = 0;
+  GaussianQuantization quantization;
   int densify_from = 500;     // densify only after this iteration
   int densify_until = 15000;  // statistics, densification and resets before it (0: none)
   int densify_interval = 100;
@@ -103,7 +109,8 @@ struct KeyframeTrainingOptions {
   // the default scene's 15 views (0.16 per pixel) are left as they were. No importance
   // pruning: it halves the default scene's keyframe for 0.05 dB, but costs a real capture
   // and a sparse rig more than coarser quantization of the same bytes (README, "Keyframes
-  // pruned by importance").
+  // pruned by importance"). The last quarter of the run is quantization-aware (at
+  // `quantization`, which the encoder sets to its rate point's keyframe bits).
   // The same proportions at another length (Short() is Short(7000)): densification from
   // iterations / 14 to half the run every iterations / 70 (at most 100), the opacity reset at
   // 3/7 of the run, SH degree up every iterations / 30.
@@ -158,11 +165,13 @@ class KeyframeTrainer {
   Status ForwardBackward(int view);
   Status Densify();
   Status PruneUnimportant();
+  bool QuantizationAware() const;
 
   KeyframeTrainingOptions options_;
   TrainingViews views_;
   GaussianModel model_;
   GaussianModel gradients_;
+  GaussianModel quantized_;  // what the forward pass renders while quantization-aware
   AdamOptimizer optimizer_;
   DensificationStats stats_;
   float scene_extent_ = 0;
