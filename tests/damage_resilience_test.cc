@@ -27,7 +27,7 @@ struct CleanStream {
   std::string name;
   std::vector<uint8_t> bytes;
   std::map<uint32_t, std::string> expected;  // frame_index -> hash
-  std::vector<size_t> gop_starts;            // byte offsets of the SEQUENCE_HEADERs
+  std::vector<size_t> gop_starts;            // byte offsets of the SEQUENCE_HEADERs (random access)
   std::vector<std::vector<uint32_t>> gop_frames;
 };
 
@@ -116,9 +116,10 @@ TEST(DamageResilience, ThousandRandomDamagesNeverCrashAndResumeAtTheNextGop) {
     }
   }
   EXPECT_GT(reported, 900);
-  // Coverage guard: several streams are one GOP long, so about a third of the trials damage a
-  // byte before some later GOP.
-  EXPECT_GT(resumed_gops, 300);
+  // Coverage guard: decoding resumes only at a random-access GOP, and most streams have one
+  // (the encoded ones keep their static layer across GOPs), so about a tenth of the trials
+  // damage a byte before a later random-access GOP (measured: 103).
+  EXPECT_GT(resumed_gops, 80);
 }
 
 }  // namespace

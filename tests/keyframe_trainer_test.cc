@@ -226,6 +226,48 @@ TEST(KeyframeTrainerTest, FrozenGroupsStayAndCapHolds) {
   EXPECT_NE(model.positions, start.positions);
 }
 
+// A dependent keyframe's retraining: the leading Gaussians stay exactly as given, bit for bit
+// and in place, through steps, densification (they are cloned, never split or pruned) and
+// quantization-aware iterations; the others train.
+TEST(KeyframeTrainerTest, FrozenGaussiansStayExactlyAsGiven) {
+  const Scene scene = MakeScene();
+  const Capture& capture = scene.capture;
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(capture.initial_points, PointInitialisationOptions(), &initial).ok());
+  const GaussianModel start = initial;
+  const size_t frozen = start.size() / 2;
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 160;
+  options.densify_from = 20;
+  options.densify_until = 120;
+  options.densify_interval = 20;
+  options.quantization_aware_iterations = 40;
+  options.frozen_gaussians = frozen;
+  KeyframeTrainer trainer;
+  ASSERT_TRUE(trainer.Init(options, train, std::move(initial)).ok());
+  ASSERT_TRUE(trainer.Train().ok());
+  const GaussianModel& model = trainer.model();
+  ASSERT_GE(model.size(), frozen);
+  EXPECT_GT(trainer.densify_totals().cloned + trainer.densify_totals().split, 0u);
+  for (int p = 0; p < kGaussianParameterCount; ++p) {
+    const auto param = static_cast<GaussianParameter>(p);
+    const size_t n = frozen * static_cast<size_t>(start.width(param));
+    const std::vector<float>& a = model.values(param);
+    const std::vector<float>& b = start.values(param);
+    EXPECT_TRUE(std::equal(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n), b.begin()))
+        << "parameter " << p;
+    EXPECT_FALSE(std::equal(a.begin() + static_cast<std::ptrdiff_t>(n),
+                            a.begin() + static_cast<std::ptrdiff_t>(n + 3),
+                            b.begin() + static_cast<std::ptrdiff_t>(n)))
+        << "parameter " << p;
+  }
+  options.frozen_gaussians = start.size() + 1;
+  EXPECT_EQ(trainer.Init(options, train, start).code(), M4D_ERR_INVALID_ARG);
+}
+
 // A cap per training pixel: 7 views of 64x48 at 0.01 per pixel allow 215 Gaussians, fewer
 // than densification.max_gaussians; densification fills it and stops there.
 TEST(KeyframeTrainerTest, PixelCapBoundsDensification) {

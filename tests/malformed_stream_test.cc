@@ -72,7 +72,7 @@ TEST_F(MalformedStream, PacketHeaderFields) {
             M4D_ERR_CHECKSUM);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[5] |= 2; })), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[7] = 1; })), M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 7; })), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 8; })), M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 0; })), M4D_ERR_UNSUPPORTED);
   // payload_size above 2^26.
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[15] = 0x10; })), M4D_ERR_LIMIT);
@@ -137,10 +137,9 @@ TEST_F(MalformedStream, SequenceHeaderFields) {
   auto set = [](size_t offset, uint8_t value) {
     return [offset, value](std::vector<uint8_t>* p) { (*p)[offset] = value; };
   };
-  // Another major version, the previous and the next minor version.
+  // Another major version, a minor version before the oldest decoded (0.2) and the next one.
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(0, 1))), M4D_ERR_UNSUPPORTED);
-  EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, M4D_BITSTREAM_VERSION_MINOR - 1))),
-            M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, 1))), M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(1, M4D_BITSTREAM_VERSION_MINOR + 1))),
             M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, SequencePacket(set(2, 1))), M4D_ERR_UNSUPPORTED);

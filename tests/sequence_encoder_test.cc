@@ -184,6 +184,39 @@ TEST(SequenceEncoderTest, FixedGopAndAblations) {
   }
 }
 
+// Within the random-access interval a new GOP keeps the static layer bit for bit (a dependent
+// keyframe re-sends the dynamic layer only); at interval 0 every GOP re-sends both.
+TEST(SequenceEncoderTest, DependentGopsKeepTheStaticLayer) {
+  Capture capture = MakeCapture();
+  for (double seconds : {10.0, 0.0}) {
+    EncoderOptions o = SmallOptions();
+    o.gop.adaptive = false;
+    o.gop.fixed_length = 2;
+    o.gop.random_access_seconds = seconds;
+    SequenceEncoder encoder(capture, o);
+    SequenceReport report;
+    ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+    ASSERT_EQ(report.frames.size(), static_cast<size_t>(kFrames));
+    EXPECT_EQ(DecodedHashes(encoder.stream()).size(), static_cast<size_t>(kFrames));
+    M4dSettings static_only = testing::DefaultSettings();
+    static_only.layers = M4D_LAYER_STATIC;
+    const std::vector<std::string> statics =
+        testing::DecodeWith(static_only, testing::SplitPackets(encoder.stream())).hashes;
+    ASSERT_EQ(statics.size(), static_cast<size_t>(kFrames));
+    for (int f = 2; f < kFrames; f += 2) {
+      const FrameReport& r = report.frames[f];
+      ASSERT_TRUE(r.keyframe) << f;
+      EXPECT_EQ(r.random_access, seconds == 0.0) << f;
+      EXPECT_EQ(r.bytes.by_type[M4D_PACKET_KEYFRAME_STATIC] > 0, seconds == 0.0) << f;
+      EXPECT_EQ(r.bytes.by_type[M4D_PACKET_SEQUENCE_HEADER] > 0, seconds == 0.0) << f;
+      if (seconds > 0.0) {
+        EXPECT_EQ(r.static_count, report.frames[0].static_count) << f;
+        EXPECT_EQ(statics[f], statics[0]) << f;
+      }
+    }
+  }
+}
+
 // The blob appearing at frame 3 is far from the dynamic blob, so compensation adds little and
 // r_t stays small; the quality guard of the adaptive GOP starts a new GOP there instead.
 TEST(SequenceEncoderTest, ContentAppearingAwayFromMotionStartsAGop) {

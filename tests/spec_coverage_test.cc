@@ -63,6 +63,8 @@ struct Walk {
   int mlp_layers = 0;
   bool static_in_gop = false;
   int inter_in_gop = 0;
+  bool frame_complete = false;  // the previous packet ended a frame
+  bool dependent = false;       // the current keyframe is a dependent one (0.3)
 
   void Add(const std::string& f) { features.insert(f); }
 
@@ -110,7 +112,9 @@ struct Walk {
   }
 
   void SequenceHeader(Reader* r) {
-    r->Skip(3);
+    r->Skip(1);
+    Add("version_minor=" + std::to_string(r->U8()));
+    r->Skip(1);
     sh_degree = static_cast<int>(r->U8());
     Add("sh_degree=" + std::to_string(sh_degree));
     r->Skip(12);
@@ -163,22 +167,42 @@ struct Walk {
     GaussianSet(r, "added");
   }
 
+  void StartGop(bool random_access) {
+    if (features.count("gop_started")) Add("gops>=2");
+    if (random_access && features.count("random_access_started")) Add("random_access_gops>=2");
+    Add("gop_started");
+    if (random_access) Add("random_access_started");
+    dependent = !random_access;
+    if (dependent) Add("dependent_keyframe");
+    static_in_gop = false;
+    inter_in_gop = 0;
+  }
+
   void Packet(const M4dPacketInfo& info, const uint8_t* payload) {
     Reader r(payload, info.payload_size);
+    const bool starts_dependent = frame_complete && (info.type == M4D_PACKET_STATIC_UPDATE ||
+                                                     info.type == M4D_PACKET_KEYFRAME_DYNAMIC);
+    frame_complete = info.type == M4D_PACKET_MLP_WEIGHTS || info.type == M4D_PACKET_COMPENSATION;
+    if (starts_dependent) StartGop(false);
     switch (info.type) {
       case M4D_PACKET_SEQUENCE_HEADER:
-        if (features.count("gop_started")) Add("gops>=2");
-        Add("gop_started");
-        static_in_gop = false;
-        inter_in_gop = 0;
+        StartGop(true);
         SequenceHeader(&r);
         break;
       case M4D_PACKET_KEYFRAME_STATIC:
         static_in_gop = true;
         GaussianSet(&r, "static");
         break;
+      case M4D_PACKET_STATIC_UPDATE: {
+        static_in_gop = true;
+        const uint32_t removed = r.VarUint();
+        Add(removed ? "static_update_removed>0" : "static_update_removed=0");
+        if (removed) SymbolBlock(&r);
+        GaussianSet(&r, "static_update_added");
+        break;
+      }
       case M4D_PACKET_KEYFRAME_DYNAMIC:
-        if (!static_in_gop) Add("keyframe_static_absent");
+        if (!static_in_gop) Add(dependent ? "static_update_absent" : "keyframe_static_absent");
         GaussianSet(&r, "dynamic");
         break;
       case M4D_PACKET_MLP_WEIGHTS:
@@ -212,6 +236,7 @@ std::set<std::string> StreamFeatures(const std::string& path) {
     pos += info.packet_size;
   }
   walk.features.erase("gop_started");
+  walk.features.erase("random_access_started");
   return walk.features;
 }
 

@@ -34,7 +34,27 @@ struct TestStreamShape {
   int dynamic_count = 400;
   int sh_degree = 1;
   uint64_t seed = 5;
+  // GOPs after the first are dependent (bitstream 0.3). Each replaces every
+  // static_change_step-th static Gaussian and adds 5 more with a STATIC_UPDATE (0: none).
+  bool dependent_gops = false;
+  int static_change_step = 0;
 };
+
+// A dependent keyframe's static change of MakeTestStream.
+inline SetChange TestStaticChange(const GaussianSet& static_set, const TestStreamShape& shape,
+                                  uint64_t seed) {
+  SetChange change;
+  change.removed.assign(static_set.size(), 0);
+  size_t removed = 0;
+  for (int i = 0; shape.static_change_step > 0 && i < static_cast<int>(static_set.size());
+       i += shape.static_change_step, ++removed) {
+    change.removed[static_cast<size_t>(i)] = 1;
+  }
+  const float center[3] = {1, 0, 0};
+  change.added = SyntheticGaussianSet(shape.static_change_step > 0 ? removed + 5 : 0,
+                                      shape.sh_degree, seed, center, 1.0f);
+  return change;
+}
 
 inline std::vector<Packet> SplitPackets(const std::vector<uint8_t>& bytes) {
   std::vector<Packet> packets;
@@ -61,10 +81,17 @@ inline TestStream MakeTestStream(const TestStreamShape& shape = TestStreamShape(
   for (int g = 0; g < shape.gops; ++g) {
     const uint64_t seed = shape.seed * 100 + g;
     DecodedFrame recon;
-    Status status = writer.WriteKeyframe(
-        SyntheticGaussianSet(shape.static_count, shape.sh_degree, seed, center, 2.0f),
-        SyntheticGaussianSet(shape.dynamic_count, shape.sh_degree, seed + 1, fg_center, 0.4f),
-        SyntheticMlp(options.sequence.grid.feature_count(), options.sequence.mlp, seed), &recon);
+    const GaussianSet dynamic_set =
+        SyntheticGaussianSet(shape.dynamic_count, shape.sh_degree, seed + 1, fg_center, 0.4f);
+    const MlpWeights mlp =
+        SyntheticMlp(options.sequence.grid.feature_count(), options.sequence.mlp, seed);
+    Status status =
+        g > 0 && shape.dependent_gops
+            ? writer.WriteDependentKeyframe(TestStaticChange(writer.static_set(), shape, seed * 3),
+                                            dynamic_set, mlp, &recon)
+            : writer.WriteKeyframe(
+                  SyntheticGaussianSet(shape.static_count, shape.sh_degree, seed, center, 2.0f),
+                  dynamic_set, mlp, &recon);
     if (!status.ok()) throw std::runtime_error(status.message());
     out.recon_hashes.push_back(FrameHashHex(recon));
     out.dynamic_counts.push_back(recon.dynamic_layer->size());

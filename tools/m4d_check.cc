@@ -16,8 +16,9 @@
 
 namespace {
 
+constexpr uint32_t kLastType = M4D_PACKET_STATIC_UPDATE;
 const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
-                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION"};
+                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE"};
 
 // The grammar of spec 2 as the packet types that may follow each one.
 bool MayFollow(uint32_t previous, uint32_t type) {
@@ -27,13 +28,15 @@ bool MayFollow(uint32_t previous, uint32_t type) {
     case M4D_PACKET_SEQUENCE_HEADER:
       return type == M4D_PACKET_KEYFRAME_STATIC || type == M4D_PACKET_KEYFRAME_DYNAMIC;
     case M4D_PACKET_KEYFRAME_STATIC:
+    case M4D_PACKET_STATIC_UPDATE:
       return type == M4D_PACKET_KEYFRAME_DYNAMIC;
     case M4D_PACKET_KEYFRAME_DYNAMIC:
       return type == M4D_PACKET_MLP_WEIGHTS;
     case M4D_PACKET_MOTION_GRID:
       return type == M4D_PACKET_COMPENSATION;
-    default:  // MLP_WEIGHTS or COMPENSATION ended a frame
-      return type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID;
+    default:  // MLP_WEIGHTS or COMPENSATION ended a frame; a dependent keyframe may follow
+      return type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID ||
+             type == M4D_PACKET_STATIC_UPDATE || type == M4D_PACKET_KEYFRAME_DYNAMIC;
   }
 }
 
@@ -43,7 +46,7 @@ struct Checker {
   uint32_t frame = 0;     // frame_index of the previous packet
   int gops = 0, frames = 0;
   uint32_t declared_frames = 0;
-  size_t bytes[7] = {};
+  size_t bytes[kLastType + 1] = {};
 
   void Violation(size_t offset, const std::string& what) {
     ++violations;
@@ -52,7 +55,7 @@ struct Checker {
 
   void CheckGrammar(size_t offset, const M4dPacketInfo& info) {
     const uint32_t type = info.type;
-    const char* name = type <= 6 ? kTypeNames[type] : "unknown";
+    const char* name = type <= kLastType ? kTypeNames[type] : "unknown";
     if (!MayFollow(previous, type)) {
       Violation(offset, std::string(name) + " may not follow " + kTypeNames[previous]);
     }
@@ -60,8 +63,9 @@ struct Checker {
     if ((info.end_of_frame != 0) != ends) {
       Violation(offset, std::string(name) + (ends ? " without" : " with") + " end_of_frame");
     }
-    const bool starts_frame = type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID;
-    if (type == M4D_PACKET_MOTION_GRID && previous != 0 && info.frame_index != frame + 1) {
+    const bool ended = previous == M4D_PACKET_MLP_WEIGHTS || previous == M4D_PACKET_COMPENSATION;
+    const bool starts_frame = type == M4D_PACKET_SEQUENCE_HEADER || ended;
+    if (starts_frame && type != M4D_PACKET_SEQUENCE_HEADER && info.frame_index != frame + 1) {
       Violation(offset, "frame " + std::to_string(info.frame_index) + " after frame " +
                             std::to_string(frame) + " in a GOP");
     }
@@ -69,9 +73,10 @@ struct Checker {
       Violation(offset, std::string(name) + " of frame " + std::to_string(info.frame_index) +
                             " inside frame " + std::to_string(frame));
     }
-    gops += type == M4D_PACKET_SEQUENCE_HEADER;
+    gops += type == M4D_PACKET_SEQUENCE_HEADER ||
+            (ended && (type == M4D_PACKET_STATIC_UPDATE || type == M4D_PACKET_KEYFRAME_DYNAMIC));
     frames += ends;
-    previous = type <= 6 ? type : previous;
+    previous = type <= kLastType ? type : previous;
     frame = info.frame_index;
   }
 };
@@ -112,7 +117,7 @@ int main(int argc, char** argv) {
       const uint32_t declared = DeclaredFrames(&data[pos]);
       if (check.declared_frames == 0) check.declared_frames = declared;
     }
-    if (info.type <= 6) check.bytes[info.type] += info.packet_size;
+    if (info.type <= kLastType) check.bytes[info.type] += info.packet_size;
     r = m4d_send_packet(ctx, &data[pos], info.packet_size);
     M4dFrame frame;
     while (r == M4D_ERR_AGAIN && m4d_get_frame(ctx, &frame) == M4D_OK) {
@@ -136,7 +141,7 @@ int main(int argc, char** argv) {
   }
   std::printf("%s: %d GOPs, %d frames, %zu bytes\n", input.c_str(), check.gops, check.frames,
               data.size());
-  for (uint32_t t = 1; t <= 6; ++t) {
+  for (uint32_t t = 1; t <= kLastType; ++t) {
     std::printf("  %-18s %12zu bytes\n", kTypeNames[t], check.bytes[t]);
   }
   std::printf("%s\n", check.violations == 0

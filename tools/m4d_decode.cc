@@ -55,7 +55,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", opt.output, "write the hash lines to this file, not stdout");
   app.add_option("--layers", opt.layers, "layers to output")
       ->check(CLI::IsMember({"all", "static", "dynamic"}));
-  app.add_option("--start-gop", opt.start_gop, "seek: start decoding at this GOP (0-based)")
+  app.add_option("--start-gop", opt.start_gop,
+                 "seek: start decoding at this random-access GOP (0-based; dependent GOPs "
+                 "are not counted: decoding cannot start there)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", opt.quiet, "no summary on stderr");
   CLI11_PARSE(app, argc, argv);

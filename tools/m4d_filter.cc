@@ -1,7 +1,7 @@
-// m4d_filter: writes the foreground-only form of a stream (spec 2): every KEYFRAME_STATIC
-// removed, the rest copied. It stays a valid stream, and it is all a player that composites
-// the foreground over its own background needs to receive. Stops with an error at the first
-// packet whose header does not parse.
+// m4d_filter: writes the foreground-only form of a stream (spec 2): every KEYFRAME_STATIC and
+// STATIC_UPDATE removed, the rest copied. It stays a valid stream, and it is all a player that
+// composites the foreground over its own background needs to receive. Stops with an error at the
+// first packet whose header does not parse.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
@@ -15,7 +15,9 @@ namespace {}  // namespace
 
 int main(int argc, char** argv) {
   std::string input, output;
-  CLI::App app{"Write the foreground-only form of a stream (every KEYFRAME_STATIC removed)."};
+  CLI::App app{
+      "Write the foreground-only form of a stream (every KEYFRAME_STATIC and STATIC_UPDATE "
+      "removed)."};
   app.add_option("input", input, "stream to read")->required()->check(CLI::ExistingFile);
   app.add_option("output", output, "foreground-only stream to write")->required();
   CLI11_PARSE(app, argc, argv);
@@ -33,7 +35,7 @@ int main(int argc, char** argv) {
                    m4d_error_string(r));
       return 1;
     }
-    if (info.type != M4D_PACKET_KEYFRAME_STATIC) {
+    if (info.type != M4D_PACKET_KEYFRAME_STATIC && info.type != M4D_PACKET_STATIC_UPDATE) {
       kept.insert(kept.end(), data.begin() + static_cast<std::ptrdiff_t>(pos),
                   data.begin() + static_cast<std::ptrdiff_t>(pos + info.packet_size));
     } else {

@@ -162,7 +162,7 @@ std::vector<Case> Cases() {
       {"reserved_flag_bit", "M4D_ERR_BITSTREAM", "flags bit 1 set", SetHeaderByte(kMotion, 5, 2)},
       {"reserved_field", "M4D_ERR_BITSTREAM", "the reserved u16 of a header not 0",
        SetHeaderByte(kMotion, 7, 1)},
-      {"unknown_packet_type", "M4D_ERR_UNSUPPORTED", "packet type 7", SetHeaderByte(kMotion, 4, 7)},
+      {"unknown_packet_type", "M4D_ERR_UNSUPPORTED", "packet type 8", SetHeaderByte(kMotion, 4, 8)},
       {"payload_size_above_limit", "M4D_ERR_LIMIT",
        "a header declares a payload above MAX_PAYLOAD_SIZE (2^26)",
        [](Stream* s, std::vector<uint8_t>*) {
@@ -171,7 +171,7 @@ std::vector<Case> Cases() {
          const uint32_t crc = m4d::Crc32(p.data(), 20);
          for (int i = 0; i < 4; ++i) p[20 + i] = static_cast<uint8_t>(crc >> (8 * i));
        }},
-      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.3",
+      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.4 (the next minor)",
        SetPayloadByte(kSeq, 1, M4D_BITSTREAM_VERSION_MINOR + 1)},
       {"unsupported_profile", "M4D_ERR_UNSUPPORTED", "profile 1", SetPayloadByte(kSeq, 2, 1)},
       {"sh_degree_out_of_range", "M4D_ERR_BITSTREAM", "sh_degree 4", SetPayloadByte(kSeq, 3, 4)},
@@ -198,6 +198,27 @@ std::vector<Case> Cases() {
          (*s)[kMotion + 2][8] += 1;
          FixCrcs(&(*s)[kMotion + 2]);
        }},
+      // Version 0.3's dependent keyframes: GOP 1 without its SEQUENCE_HEADER and
+      // KEYFRAME_STATIC is one (valid); these break it.
+      {"dependent_keyframe_in_v02_stream", "M4D_ERR_BITSTREAM",
+       "a dependent keyframe in a stream that declares version 0.2",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->erase(s->begin() + 8, s->begin() + 8 + kDynamic);
+         (*s)[kSeq][24 + 1] = 2;
+         FixCrcs(&(*s)[kSeq]);
+       }},
+      {"dependent_keyframe_index_gap", "M4D_ERR_BITSTREAM",
+       "a dependent keyframe numbered one past the next frame",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->erase(s->begin() + 8, s->begin() + 8 + kDynamic);
+         for (size_t p = 8; p < s->size(); ++p) {
+           (*s)[p][8] += 1;
+           FixCrcs(&(*s)[p]);
+         }
+       }},
+      {"static_update_after_sequence_header", "M4D_ERR_BITSTREAM",
+       "a STATIC_UPDATE in a random-access keyframe (KEYFRAME_STATIC's type changed to 7)",
+       SetHeaderByte(kStatic, 4, M4D_PACKET_STATIC_UPDATE)},
       {"compensation_without_motion_grid", "M4D_ERR_BITSTREAM", "frame 1's MOTION_GRID missing",
        [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kMotion); }},
       {"missing_end_of_frame", "M4D_ERR_BITSTREAM",

@@ -3,6 +3,7 @@
 // public C API, and checks frame by frame that the decoder reproduces the writer's
 // closed-loop reconstruction. Prints per-frame and per-layer sizes.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -30,11 +31,38 @@ struct Options {
   std::vector<int> grid;  // resolution, channels per level (empty: the paper's)
   int mlp_layers = 1, mlp_width = 64;
   int bits = 0;  // every Gaussian group's bits (0: the writer's defaults)
+  // GOPs after the first are dependent (bitstream 0.3): they keep the static set and change
+  // this share of it (removed, and replaced or added) with a STATIC_UPDATE (0: none).
+  bool dependent_gops = false;
+  float static_change = 0.0f;
+  int bitstream_minor = M4D_BITSTREAM_VERSION_MINOR;  // 2: a version 0.2 stream
 };
+
+// A dependent keyframe's change of the static set: every k-th Gaussian removed, and a few more
+// added than removed (so that both the in-place replacement and the append of 6.4 occur).
+m4d::SetChange StaticChange(const m4d::GaussianSet& static_set, float share, int sh_degree,
+                            uint64_t seed) {
+  m4d::SetChange change;
+  change.removed.assign(static_set.size(), 0);
+  size_t removed = 0;
+  if (share > 0.0f) {
+    const size_t k = std::max<size_t>(1, static_cast<size_t>(1.0f / share));
+    for (size_t i = seed % k; i < static_set.size(); i += k, ++removed) change.removed[i] = 1;
+  }
+  const float center[3] = {0, 0, 0};
+  change.added =
+      m4d::SyntheticGaussianSet(share > 0.0f ? removed + 3 : 0, sh_degree, seed, center, 3.0f);
+  return change;
+}
 
 // The sequence configuration the options ask for; false (with a message) when out of limits.
 bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
   wo->sequence.sh_degree = opt.sh_degree;
+  wo->sequence.version_minor = opt.bitstream_minor;
+  if (opt.dependent_gops && opt.bitstream_minor < 3) {
+    std::fprintf(stderr, "m4d_synth: dependent GOPs need bitstream 0.3\n");
+    return false;
+  }
   wo->sequence.num_frames = static_cast<uint32_t>(opt.gops * opt.frames_per_gop);
   if (!opt.grid.empty()) {
     if (opt.grid.size() % 2 != 0 || opt.grid.size() > 2 * m4d::kMaxGridLevels) {
@@ -87,7 +115,11 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
     DecodedFrame recon;
     for (int f = 0; f < opt.frames_per_gop; ++f) {
       Status status;
-      if (f == 0) {
+      if (f == 0 && g > 0 && opt.dependent_gops) {
+        const SetChange change =
+            StaticChange(writer.static_set(), opt.static_change, opt.sh_degree, seed * 5);
+        status = writer.WriteDependentKeyframe(change, fg, mlp, &recon);
+      } else if (f == 0) {
         status = writer.WriteKeyframe(bg, fg, mlp, &recon);
       } else {
         status = writer.WriteMotion(
@@ -110,7 +142,8 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
       const auto& b = writer.last_frame_bytes().by_type;
       std::printf("%6u %4s %12zu %12zu %10zu %10zu %10zu\n", recon.frame_index,
                   f == 0 ? "key" : "inter",
-                  b[M4D_PACKET_KEYFRAME_STATIC] + b[M4D_PACKET_SEQUENCE_HEADER],
+                  b[M4D_PACKET_KEYFRAME_STATIC] + b[M4D_PACKET_SEQUENCE_HEADER] +
+                      b[M4D_PACKET_STATIC_UPDATE],
                   b[M4D_PACKET_KEYFRAME_DYNAMIC], b[M4D_PACKET_MLP_WEIGHTS],
                   b[M4D_PACKET_MOTION_GRID], b[M4D_PACKET_COMPENSATION]);
     }
@@ -174,6 +207,15 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4));
   app.add_option("--mlp-width", opt.mlp_width, "width of its hidden layers")
       ->check(CLI::Range(1, 256));
+  app.add_flag("--dependent-gops", opt.dependent_gops,
+               "GOPs after the first keep the static set (bitstream 0.3 dependent keyframes)");
+  app.add_option("--static-change", opt.static_change,
+                 "with --dependent-gops: share of the static set each dependent keyframe "
+                 "replaces, plus 3 Gaussians added (0: no STATIC_UPDATE)")
+      ->check(CLI::Range(0.0f, 1.0f));
+  app.add_option("--bitstream-minor", opt.bitstream_minor,
+                 "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs)")
+      ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));
   CLI11_PARSE(app, argc, argv);

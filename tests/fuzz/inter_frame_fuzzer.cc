@@ -1,7 +1,8 @@
-// libFuzzer target for the inter-frame layer decoders in context: a real keyframe and motion
+// libFuzzer target for the set-changing layer decoders in context: a real keyframe and motion
 // grid are decoded first, then the input is the payload of frame 1's MOTION_GRID (first byte
-// even) or COMPENSATION (odd), sent with valid CRCs so that it reaches the parsers, the motion
-// application and the compensation merge.
+// 0 mod 3) or COMPENSATION (1 mod 3), or of the STATIC_UPDATE of a dependent keyframe at
+// frame 2 (2 mod 3, followed by that keyframe's valid KEYFRAME_DYNAMIC and MLP_WEIGHTS), sent
+// with valid CRCs so that it reaches the parsers, the motion application and the merges.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -27,7 +28,22 @@ const std::vector<m4d::testing::Packet>& Prefix() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  const bool motion = (data[0] & 1) == 0;
+  const int mode = data[0] % 3;
+  if (mode == 2) {
+    std::vector<m4d::testing::Packet> packets = Prefix();
+    for (uint8_t type :
+         {M4D_PACKET_STATIC_UPDATE, M4D_PACKET_KEYFRAME_DYNAMIC, M4D_PACKET_MLP_WEIGHTS}) {
+      // The dependent keyframe's sets and MLP are the first keyframe's (packets 2 and 3).
+      const m4d::testing::Packet& from = Prefix()[type == M4D_PACKET_MLP_WEIGHTS ? 3 : 2];
+      const bool fuzzed = type == M4D_PACKET_STATIC_UPDATE;
+      packets.emplace_back();
+      m4d::AppendPacket(type, 2, type == M4D_PACKET_MLP_WEIGHTS, fuzzed ? data + 1 : &from[24],
+                        fuzzed ? size - 1 : from.size() - 24, &packets.back());
+    }
+    m4d::testing::DecodeWith(m4d::testing::DefaultSettings(), packets);
+    return 0;
+  }
+  const bool motion = mode == 0;
   std::vector<m4d::testing::Packet> packets(Prefix().begin(), Prefix().begin() + (motion ? 4 : 5));
   packets.emplace_back();
   m4d::AppendPacket(motion ? M4D_PACKET_MOTION_GRID : M4D_PACKET_COMPENSATION, 1, !motion, data + 1,

@@ -155,6 +155,12 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--fixed-gop", o.gop.fixed_length,
                   "fixed GOP of this many frames instead of the adaptive GOP");
   cmd->add_option("--max-gop", o.gop.max_length, "longest GOP")->capture_default_str();
+  cmd->add_option("--random-access", o.gop.random_access_seconds,
+                  "seconds of content between random-access keyframes; a GOP started in between "
+                  "keeps the static layer and re-sends the dynamic layer only (0: every GOP is a "
+                  "random-access point)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   cmd->add_flag(
       "--no-decoupling", [&o](int64_t) { o.ablation.decoupling = false; },
       "ablation: every Gaussian dynamic");
@@ -262,6 +268,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},
           {"fixed_gop", o.gop.fixed_length},
           {"max_gop", o.gop.max_length},
+          {"random_access_seconds", o.gop.random_access_seconds},
           {"gop_threshold", o.gop.threshold},
           {"gop_psnr_drop", o.gop.max_psnr_drop},
           {"decoupling", o.ablation.decoupling},

@@ -42,6 +42,10 @@ struct GopOptions {
   int fixed_length = 0;  // frames per GOP when not adaptive (0: one GOP)
   int max_length = 300;  // a keyframe at least this often, adaptive or not
   int min_length = 2;    // adaptive GOPs are at least this long
+  // A new GOP inside this many seconds of content after the last random-access keyframe is a
+  // dependent one (bitstream 0.3): it keeps the static set and re-sends the dynamic layer only.
+  // 0: every GOP is a random-access point, with its static layer.
+  double random_access_seconds = 10.0;
 };
 
 struct EncoderOptions {

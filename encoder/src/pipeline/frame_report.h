@@ -28,8 +28,9 @@ struct StageSeconds {
 struct FrameReport {
   uint32_t frame_index = 0;
   bool keyframe = false;
-  PacketBytes bytes;        // by packet type
-  size_t static_count = 0;  // Gaussians of the decoded frame
+  bool random_access = false;  // a keyframe with its SEQUENCE_HEADER and static layer
+  PacketBytes bytes;           // by packet type
+  size_t static_count = 0;     // Gaussians of the decoded frame
   size_t dynamic_count = 0;
   size_t added = 0;  // compensated Gaussians coded
   size_t removed = 0;

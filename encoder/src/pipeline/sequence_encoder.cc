@@ -29,6 +29,7 @@ namespace m4d {
 struct SequenceEncoder::Gop {
   int start = 0;
   bool keyframe_pending = true;
+  bool dependent = false;  // keeps the previous GOP's static set (no SEQUENCE_HEADER)
   GaussianSet static_coded, dynamic_coded;  // the keyframe's sets before quantization
   GaussianSet static_set;                   // decoded, fixed for the GOP
   GaussianSet dynamic_set;                  // decoded, of the last coded frame
@@ -168,6 +169,9 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
     return bad("GOP lengths");
   }
   if (!(o.gop.threshold >= 0.0f)) return bad("GOP threshold");
+  if (!(o.gop.random_access_seconds >= 0.0 && o.gop.random_access_seconds <= 1e6)) {
+    return bad("random-access interval");
+  }
   if (!std::isfinite(o.compensation_min_gain)) return bad("compensation minimum gain");
   if (!std::isfinite(o.motion_min_gain)) return bad("motion minimum gain");
   for (int l = 0; l < o.grid.num_levels; ++l) {
@@ -262,17 +266,26 @@ Status SequenceEncoder::EncodeIndependentFrames() {
   return Status::Ok();
 }
 
-Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe_seconds) {
+Status SequenceEncoder::OpenGop(int frame, double keyframe_seconds, bool dependent,
+                                TrainingViews* views) {
   gop_ = std::make_unique<Gop>();
   Gop& gop = *gop_;
   gop.start = frame;
+  gop.dependent = dependent;
   gop.keyframe_report.frame_index = static_cast<uint32_t>(frame);
   gop.keyframe_report.keyframe = true;
+  gop.keyframe_report.random_access = !dependent;
   gop.keyframe_report.seconds.keyframe = keyframe_seconds;
+  if (!dependent) random_access_start_ = frame;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), views));
+  gop.scene_extent = CameraSceneBounds(views->cameras).extent;
+  return Status::Ok();
+}
 
+Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe_seconds) {
   TrainingViews views;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
-  gop.scene_extent = CameraSceneBounds(views.cameras).extent;
+  M4D_RETURN_IF_ERROR(OpenGop(frame, keyframe_seconds, false, &views));
+  Gop& gop = *gop_;
   const int t1 = std::min(frame + options_.lookahead_frames, last_frame_);
   GaussianModel static_model, dynamic_model;
   if (!options_.ablation.decoupling) {
@@ -308,6 +321,28 @@ Status SequenceEncoder::StartGop(int frame, GaussianModel model, double keyframe
       ReconstructGaussianSet(gop.static_coded, options_.quantization, &gop.static_set));
   M4D_RETURN_IF_ERROR(
       ReconstructGaussianSet(gop.dynamic_coded, options_.quantization, &gop.dynamic_set));
+  return FinishGopStart(frame, views);
+}
+
+Status SequenceEncoder::StartDependentGop(int frame, GaussianModel model, GaussianSet static_set,
+                                          double keyframe_seconds) {
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(OpenGop(frame, keyframe_seconds, true, &views));
+  Gop& gop = *gop_;
+  // The model's first rows are the kept static set, unchanged by the retraining; every other
+  // Gaussian (the previous dynamic set, retrained, and what grew) is the new dynamic layer.
+  std::vector<uint8_t> keep(model.size(), 1);
+  std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(static_set.size()), 0);
+  model.Keep(keep);
+  gop.static_set = std::move(static_set);
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, options_.sh_degree, &gop.dynamic_coded));
+  M4D_RETURN_IF_ERROR(
+      ReconstructGaussianSet(gop.dynamic_coded, options_.quantization, &gop.dynamic_set));
+  return FinishGopStart(frame, views);
+}
+
+Status SequenceEncoder::FinishGopStart(int frame, const TrainingViews& views) {
+  Gop& gop = *gop_;
   M4D_RETURN_IF_ERROR(
       TrainingPsnr(views, gop.static_set, gop.dynamic_set, &gop.keyframe_report.training_psnr));
   gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
@@ -320,7 +355,16 @@ Status SequenceEncoder::WriteKeyframe() {
   Gop& gop = *gop_;
   const Clock::time_point start = Clock::now();
   DecodedFrame recon;
-  M4D_RETURN_IF_ERROR(writer_->WriteKeyframe(gop.static_coded, gop.dynamic_coded, gop.mlp, &recon));
+  if (gop.dependent) {
+    SetChange unchanged;  // the static set stays as it is
+    unchanged.removed.assign(writer_->static_set().size(), 0);
+    unchanged.added.sh_degree = options_.sh_degree;
+    M4D_RETURN_IF_ERROR(
+        writer_->WriteDependentKeyframe(unchanged, gop.dynamic_coded, gop.mlp, &recon));
+  } else {
+    M4D_RETURN_IF_ERROR(
+        writer_->WriteKeyframe(gop.static_coded, gop.dynamic_coded, gop.mlp, &recon));
+  }
   if (!SameSet(*recon.static_layer, gop.static_set) ||
       !SameSet(*recon.dynamic_layer, gop.dynamic_set)) {
     return Status(M4D_ERR_BITSTREAM, "encoder: keyframe reconstruction differs from the decoder's");
@@ -455,7 +499,10 @@ Status SequenceEncoder::Restart(int frame) {
   // The new keyframe starts from the last decoded frame's whole state (paper section 3.5).
   GaussianModel model;
   M4D_RETURN_IF_ERROR(CombinedModel(gop_->static_set, gop_->dynamic_set, &model));
+  const bool dependent = DependentGop(frame);
   KeyframeTrainingOptions o = options_.keyframe;
+  // A dependent GOP keeps the static set exactly: its Gaussians (first in the model) stay.
+  o.frozen_gaussians = dependent ? gop_->static_set.size() : 0;
   o.iterations = options_.retrain_iterations;
   o.learning_rates.position.max_steps = options_.retrain_iterations;
   o.densify_from = std::min(o.densify_from, options_.retrain_iterations / 4);
@@ -478,7 +525,16 @@ Status SequenceEncoder::Restart(int frame) {
   M4D_RETURN_IF_ERROR(trainer.Train([&](const TrainingProgress& p) {
     if (callbacks_.training) callbacks_.training("retrain", frame, p);
   }));
-  return StartGop(frame, trainer.TakeModel(), Since(start));
+  if (!dependent) return StartGop(frame, trainer.TakeModel(), Since(start));
+  GaussianSet kept = std::move(gop_->static_set);
+  return StartDependentGop(frame, trainer.TakeModel(), std::move(kept), Since(start));
+}
+
+bool SequenceEncoder::DependentGop(int frame) const {
+  const double seconds = options_.gop.random_access_seconds;
+  if (seconds <= 0.0 || options_.independent_frames) return false;
+  const double frames = seconds * options_.fps_num / options_.fps_den;
+  return frame - random_access_start_ < static_cast<int>(std::lround(std::max(1.0, frames)));
 }
 
 RenderSettings SequenceEncoder::Settings() const {

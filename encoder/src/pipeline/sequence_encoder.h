@@ -72,7 +72,15 @@ class SequenceEncoder {
   // A keyframe trained from the capture's points (or taken from the caller).
   Status ScratchKeyframe(int frame, GaussianModel* model);
   Status EncodeIndependentFrames();
+  // A random-access GOP: the model is decoupled into static and dynamic sets.
   Status StartGop(int frame, GaussianModel model, double keyframe_seconds);
+  // A dependent GOP: static_set stays; the model's other Gaussians are the dynamic set.
+  Status StartDependentGop(int frame, GaussianModel model, GaussianSet static_set,
+                           double keyframe_seconds);
+  Status OpenGop(int frame, double keyframe_seconds, bool dependent, TrainingViews* views);
+  Status FinishGopStart(int frame, const TrainingViews& views);
+  // Whether a GOP starting at `frame` keeps the static set (GopOptions::random_access_seconds).
+  bool DependentGop(int frame) const;
   Status EncodeInterFrame(int frame, bool* restart);
   Status WriteKeyframe();
   Status Restart(int frame);
@@ -108,6 +116,7 @@ class SequenceEncoder {
   EncoderCallbacks callbacks_;
   SequenceReport* report_ = nullptr;
   int last_frame_ = 0;
+  int random_access_start_ = 0;  // first frame of the last random-access GOP
   std::unique_ptr<StreamWriter> writer_;
   std::unique_ptr<MotionEstimator> estimator_;
   std::unique_ptr<Gop> gop_;

@@ -60,7 +60,13 @@ Status StreamWriter::WriteKeyframe(const GaussianSet& static_set, const Gaussian
   M4D_RETURN_IF_ERROR(WriteGaussianSet(static_set, options_.quantization, &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_STATIC, false, payload));
 
-  payload.clear();
+  return WriteDynamicAndMlp(dynamic_set, mlp, recon);
+}
+
+Status StreamWriter::WriteDynamicAndMlp(const GaussianSet& dynamic_set, const MlpWeights& mlp,
+                                        DecodedFrame* recon) {
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
   M4D_RETURN_IF_ERROR(WriteGaussianSet(dynamic_set, options_.quantization, &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_DYNAMIC, false, payload));
 
@@ -69,6 +75,33 @@ Status StreamWriter::WriteKeyframe(const GaussianSet& static_set, const Gaussian
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MLP_WEIGHTS, true, payload));
   gop_open_ = true;
   return TakeReconstruction(recon);
+}
+
+Status StreamWriter::WriteDependentKeyframe(const SetChange& static_change,
+                                            const GaussianSet& dynamic_set, const MlpWeights& mlp,
+                                            DecodedFrame* recon) {
+  const int sh = options_.sequence.sh_degree;
+  if (static_change.added.sh_degree != sh || dynamic_set.sh_degree != sh) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: set SH degree differs from the sequence's");
+  }
+  if (!gop_open_ || motion_written_) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: a dependent keyframe needs a finished frame");
+  }
+  if (options_.sequence.version_minor < 3) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: dependent keyframes need bitstream 0.3");
+  }
+  if (static_change.removed.size() != static_set().size()) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: removal flags do not match the static set");
+  }
+  bool removes = false;
+  for (uint8_t flag : static_change.removed) removes = removes || flag != 0;
+  if (removes || static_change.added.size() > 0) {
+    std::vector<uint8_t> payload;
+    M4D_RETURN_IF_ERROR(WriteSetChange(static_change.removed, static_change.added,
+                                       options_.quantization, &payload));
+    M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_STATIC_UPDATE, false, payload));
+  }
+  return WriteDynamicAndMlp(dynamic_set, mlp, recon);
 }
 
 Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
@@ -92,20 +125,26 @@ Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,
   if (added.sh_degree != options_.sequence.sh_degree) {
     return Status(M4D_ERR_INVALID_ARG, "writer: set SH degree differs from the sequence's");
   }
+  std::vector<uint8_t> payload;
+  M4D_RETURN_IF_ERROR(WriteSetChange(removed, added, options_.compensation_quantization, &payload));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_COMPENSATION, true, payload));
+  motion_written_ = false;
+  return TakeReconstruction(recon);
+}
+
+Status StreamWriter::WriteSetChange(const std::vector<uint8_t>& removed, const GaussianSet& added,
+                                    const GaussianQuantization& quantization,
+                                    std::vector<uint8_t>* payload) {
   std::vector<int32_t> flags(removed.size());
   uint32_t num_removed = 0;
   for (size_t i = 0; i < removed.size(); ++i) {
     flags[i] = removed[i] ? 1 : 0;
     num_removed += static_cast<uint32_t>(flags[i]);
   }
-  std::vector<uint8_t> payload;
-  ByteWriter writer(&payload);
+  ByteWriter writer(payload);
   writer.WriteVarUint(num_removed);
   if (num_removed > 0) M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), &writer));
-  M4D_RETURN_IF_ERROR(WriteGaussianSet(added, options_.compensation_quantization, &writer));
-  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_COMPENSATION, true, payload));
-  motion_written_ = false;
-  return TakeReconstruction(recon);
+  return WriteGaussianSet(added, quantization, &writer);
 }
 
 }  // namespace m4d

@@ -23,9 +23,16 @@ struct StreamWriterOptions {
   int mlp_bits = 12;
 };
 
+// A change of a set (COMPENSATION, STATIC_UPDATE): one flag per Gaussian of the set (non-zero
+// = remove) and the Gaussians added (spec 6.4 places them).
+struct SetChange {
+  std::vector<uint8_t> removed;
+  GaussianSet added;
+};
+
 // Bytes written per packet type (index = M4dPacketType), packet headers included.
 struct PacketBytes {
-  std::array<size_t, 7> by_type{};
+  std::array<size_t, 8> by_type{};
   size_t total() const {
     size_t t = 0;
     for (size_t b : by_type) t += b;
@@ -41,6 +48,15 @@ class StreamWriter {
   // sh_degree must be the sequence's. *recon receives the decoded keyframe.
   Status WriteKeyframe(const GaussianSet& static_set, const GaussianSet& dynamic_set,
                        const MlpWeights& mlp, DecodedFrame* recon);
+
+  // Starts a dependent GOP (bitstream 0.3): the previous frame's static set stays, changed by
+  // `static_change` (a STATIC_UPDATE, written only when it removes or adds a Gaussian; its
+  // flags refer to static_set()), then KEYFRAME_DYNAMIC and MLP_WEIGHTS. Needs a finished
+  // frame before it.
+  Status WriteDependentKeyframe(const SetChange& static_change, const GaussianSet& dynamic_set,
+                                const MlpWeights& mlp, DecodedFrame* recon);
+  // The decoder's static set after the last packet written.
+  const GaussianSet& static_set() const { return *decoder_.static_set(); }
 
   // First packet of an inter frame. Afterwards moved_dynamic_set() is the decoder's dynamic
   // set after this motion, which the compensation refers to.
@@ -60,6 +76,11 @@ class StreamWriter {
  private:
   Status Emit(uint8_t type, bool end_of_frame, const std::vector<uint8_t>& payload);
   Status TakeReconstruction(DecodedFrame* recon);
+  // num_removed, the flags when any, the added set (spec 4.5).
+  Status WriteSetChange(const std::vector<uint8_t>& removed, const GaussianSet& added,
+                        const GaussianQuantization& quantization, std::vector<uint8_t>* payload);
+  Status WriteDynamicAndMlp(const GaussianSet& dynamic_set, const MlpWeights& mlp,
+                            DecodedFrame* recon);
 
   StreamWriterOptions options_;
   Decoder decoder_;

@@ -118,7 +118,7 @@ Status DensifyAndPrune(const DensificationSettings& settings, float scene_extent
   const float dense_limit = settings.percent_dense * scene_extent;
   std::vector<uint32_t> clones, parents;
   for (uint32_t i : Candidates(*stats, settings.gradient_threshold, budget)) {
-    (MaxScale(*model, i) <= dense_limit ? clones : parents).push_back(i);
+    (i < settings.frozen || MaxScale(*model, i) <= dense_limit ? clones : parents).push_back(i);
   }
   // Rows: originals, clones, first children, second children.
   std::vector<uint32_t> copies = clones;
@@ -139,7 +139,7 @@ Status DensifyAndPrune(const DensificationSettings& settings, float scene_extent
   const float world_limit = settings.max_world_scale * scene_extent;
   // (priority, row): size-pruned rows first (-infinity), then by opacity.
   std::vector<std::pair<float, uint32_t>> prune;
-  for (size_t i = 0; i < total; ++i) {
+  for (size_t i = settings.frozen; i < total; ++i) {
     if (!keep[i]) continue;
     const float logit = model->opacity_logits[i];
     const bool by_size =

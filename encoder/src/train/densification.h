@@ -41,6 +41,9 @@ struct DensificationSettings {
   // otherwise loses most of its model at the first pruning after the opacity reset: 80k of
   // 108k Gaussians on the Panoptic basketball capture, 21.2 dB falling to 8.2 dB.
   float max_prune_fraction = 1.0f;
+  // The first this many Gaussians are held fixed (a kept static set): never split nor pruned;
+  // one that qualifies is cloned instead, and the clone is free.
+  size_t frozen = 0;
 };
 
 // Per Gaussian: summed view-space gradient norms, views visible in, largest screen radius.

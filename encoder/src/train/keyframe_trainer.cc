@@ -19,6 +19,31 @@ namespace m4d {
 namespace {
 
 constexpr double kEmaWeight = 0.4;  // of the newest value, as the reference's progress bar
+
+// Zeroes every parameter of the first `rows` Gaussians (the frozen ones' gradients, so that
+// Adam, whose moments then stay zero, never moves them).
+void ZeroLeadingRows(size_t rows, GaussianModel* model) {
+  for (int p = 0; p < kGaussianParameterCount; ++p) {
+    const auto param = static_cast<GaussianParameter>(p);
+    std::vector<float>& v = model->values(param);
+    std::fill(
+        v.begin(),
+        v.begin() + static_cast<std::ptrdiff_t>(rows * static_cast<size_t>(model->width(param))),
+        0.0f);
+  }
+}
+
+// Copies every parameter of the first `rows` Gaussians of `from` into `to` (same SH degree).
+void CopyLeadingRows(const GaussianModel& from, size_t rows, GaussianModel* to) {
+  for (int p = 0; p < kGaussianParameterCount; ++p) {
+    const auto param = static_cast<GaussianParameter>(p);
+    const std::vector<float>& v = from.values(param);
+    std::copy(
+        v.begin(),
+        v.begin() + static_cast<std::ptrdiff_t>(rows * static_cast<size_t>(from.width(param))),
+        to->values(param).begin());
+  }
+}
 constexpr float kShortGaussiansPerPixel = 0.25f;  // keyframe_trainer.h, Short()
 
 Status OptionError(const std::string& what) {
@@ -116,11 +141,15 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   if (views.size() == 0) return Status(M4D_ERR_INVALID_ARG, "keyframe training: no views");
   if (initial.size() == 0) return Status(M4D_ERR_INVALID_ARG, "keyframe training: no Gaussians");
+  if (options.frozen_gaussians > initial.size()) {
+    return Status(M4D_ERR_INVALID_ARG, "keyframe training: more frozen Gaussians than given");
+  }
   if (initial.size() > kMaxRenderGaussians) {
     return LimitError("keyframe training: too many Gaussians");
   }
   options_ = options;
   options_.densification.max_gaussians = GaussianCap(options, views);
+  options_.densification.frozen = options.frozen_gaussians;
   scene_extent_ =
       options.scene_extent > 0.0f ? options.scene_extent : CameraSceneBounds(views.cameras).extent;
   if (!(scene_extent_ > 0.0f)) {
@@ -175,6 +204,7 @@ Status KeyframeTrainer::ForwardBackward(int view) {
     M4D_RETURN_IF_ERROR(ModelToGaussianSet(model_, model_.sh_degree, &set));
     M4D_RETURN_IF_ERROR(QuantizeGaussianSet(options_.quantization, &set));
     M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, model_.sh_degree, &quantized_));
+    CopyLeadingRows(model_, options_.frozen_gaussians, &quantized_);  // coded as they are
   }
   const GaussianLayerView layer = LayerView(QuantizationAware() ? quantized_ : model_);
   M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, Settings(), nullptr, &context_));
@@ -224,7 +254,8 @@ Status KeyframeTrainer::PruneUnimportant() {
   std::vector<double> weights;
   M4D_RETURN_IF_ERROR(
       BlendingWeights(model_, views_, Settings(), &context_, &backward_workspace_, &weights));
-  const std::vector<uint8_t> keep = KeepImportant(weights, options_.importance_prune_share);
+  std::vector<uint8_t> keep = KeepImportant(weights, options_.importance_prune_share);
+  std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(options_.frozen_gaussians), 1);
   const size_t before = model_.size();
   KeepGaussians(keep, &model_, &optimizer_, nullptr);
   importance_pruned_ += before - model_.size();
@@ -263,7 +294,10 @@ Status KeyframeTrainer::Step() {
     M4D_RETURN_IF_ERROR(PruneUnimportant());
     densified = true;  // this iteration's gradients belong to the Gaussians before pruning
   }
-  if (!densified) StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
+  if (!densified) {
+    ZeroLeadingRows(options_.frozen_gaussians, &gradients_);
+    StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
+  }
   progress_.iteration = it;
   progress_.gaussians = model_.size();
   return Status::Ok();

@@ -64,6 +64,9 @@ struct KeyframeTrainingOptions {
   // will reconstruct it, and apply the gradients to the unquantized values (straight-through):
   // the model learns values whose quantization renders well (0: none).
   int quantization_aware_iterations = 0;
+  // The first this many Gaussians of the initial model stay exactly as given (a dependent
+  // keyframe's kept static set): no step, never split or pruned (their clones are free).
+  size_t frozen_gaussians = 0;
   GaussianQuantization quantization;
   int densify_from = 500;     // densify only after this iteration
   int densify_until = 15000;  // statistics, densification and resets before it (0: none)

@@ -40,10 +40,10 @@ extern "C" {
 
 /* Library version (of this SDK), and the bitstream version it decodes. */
 #define M4D_VERSION_MAJOR 0
-#define M4D_VERSION_MINOR 4
+#define M4D_VERSION_MINOR 5
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 2
+#define M4D_BITSTREAM_VERSION_MINOR 3 /* decodes 0.2 streams too */
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0
@@ -67,7 +67,8 @@ typedef enum M4dPacketType {
   M4D_PACKET_KEYFRAME_DYNAMIC = 3,
   M4D_PACKET_MLP_WEIGHTS = 4,
   M4D_PACKET_MOTION_GRID = 5,
-  M4D_PACKET_COMPENSATION = 6
+  M4D_PACKET_COMPENSATION = 6,
+  M4D_PACKET_STATIC_UPDATE = 7 /* bitstream 0.3: the static set's change at a dependent keyframe */
 } M4dPacketType;
 
 /* Log levels passed to M4dLogger.callback. */
@@ -126,7 +127,8 @@ typedef struct M4dGaussians {
 /* A decoded frame: the Gaussian state of frame frame_index. */
 typedef struct M4dFrame {
   uint32_t frame_index;
-  int is_keyframe;            /* 1 at the start of a GOP (a random access point) */
+  int is_keyframe;            /* 1 at the start of a GOP: a random access point unless the
+                                 GOP is dependent (bitstream 0.3, spec 2) */
   uint32_t layers;            /* the layers this frame outputs (M4D_LAYER_* bits) */
   M4dGaussians static_layer;  /* background; count 0 if not output */
   M4dGaussians dynamic_layer; /* foreground; count 0 if not output */
@@ -192,13 +194,15 @@ M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 M4D_API int m4d_get_frame(M4dContext* c, M4dFrame* out);
 
 /* Drops all decoding state and any pending frame, for seeking: after a flush the decoder
- * skips packets until the next SEQUENCE_HEADER (the start of a GOP). The caller background
+ * skips packets until the next SEQUENCE_HEADER (a random-access GOP's start). The caller background
  * (m4d_set_background) and the settings are kept. */
 M4D_API void m4d_flush(M4dContext* c);
 
 /* Replaces the static layer of every frame by a copy of *background (a caller's own scene),
- * from the next frame on; KEYFRAME_STATIC packets are then skipped. NULL restores the
- * stream's own static layer. Its sh_degree may differ from the stream's. Returns
+ * from the next frame on; KEYFRAME_STATIC and STATIC_UPDATE packets are then skipped. NULL
+ * restores the stream's own static layer; if a static packet was skipped meanwhile, that
+ * layer is empty until the next SEQUENCE_HEADER (spec 6.6). Its sh_degree may differ from
+ * the stream's. Returns
  * M4D_ERR_INVALID_ARG for a NULL context, inconsistent arrays or a count above the limit. */
 M4D_API int m4d_set_background(M4dContext* c, const M4dGaussians* background);
 

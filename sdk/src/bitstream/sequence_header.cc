@@ -5,8 +5,7 @@
 namespace m4d {
 
 Status ValidateSequenceHeader(const SequenceHeader& h, uint32_t max_grid_values) {
-  if (h.version_major != M4D_BITSTREAM_VERSION_MAJOR ||
-      h.version_minor != M4D_BITSTREAM_VERSION_MINOR) {
+  if (!SupportedBitstreamVersion(h.version_major, h.version_minor)) {
     return Status(M4D_ERR_UNSUPPORTED, "sequence header: bitstream version " +
                                            std::to_string(h.version_major) + "." +
                                            std::to_string(h.version_minor) + " not supported");
@@ -56,8 +55,7 @@ Status ReadSequenceHeader(ByteReader* reader, uint32_t max_grid_values, Sequence
   h.version_minor = minor;
   h.profile = profile;
   // Versions are checked first so that a newer stream reports "unsupported", not garbage.
-  if (major != M4D_BITSTREAM_VERSION_MAJOR || minor != M4D_BITSTREAM_VERSION_MINOR ||
-      profile != 0) {
+  if (!SupportedBitstreamVersion(major, minor) || profile != 0) {
     return ValidateSequenceHeader(h, max_grid_values);
   }
   if (!reader->ReadU8(&sh_degree) || !reader->ReadU32(&h.fps_num) || !reader->ReadU32(&h.fps_den) ||

@@ -11,6 +11,16 @@
 
 namespace m4d {
 
+// The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
+// keyframes; spec 10).
+constexpr int kOldestBitstreamMinor = 2;
+
+// True when the version is one this decoder implements.
+inline bool SupportedBitstreamVersion(int major, int minor) {
+  return major == M4D_BITSTREAM_VERSION_MAJOR && minor >= kOldestBitstreamMinor &&
+         minor <= M4D_BITSTREAM_VERSION_MINOR;
+}
+
 struct SequenceHeader {
   int version_major = M4D_BITSTREAM_VERSION_MAJOR;
   int version_minor = M4D_BITSTREAM_VERSION_MINOR;
@@ -21,6 +31,9 @@ struct SequenceHeader {
   uint32_t num_frames = 0;
   GridConfig grid;
   MlpConfig mlp;
+
+  // Dependent keyframes and STATIC_UPDATE exist from 0.3 on.
+  bool allows_dependent_gops() const { return version_minor >= 3; }
 };
 
 // Reads and validates a SEQUENCE_HEADER payload (the whole payload must be consumed).

@@ -28,6 +28,8 @@ const char* PacketName(uint8_t type) {
       return "MOTION_GRID";
     case M4D_PACKET_COMPENSATION:
       return "COMPENSATION";
+    case M4D_PACKET_STATIC_UPDATE:
+      return "STATIC_UPDATE";
     default:
       return "unknown";
   }
@@ -98,9 +100,15 @@ Status Decoder::CheckOrder(const PacketHeader& h) {
     case M4D_PACKET_KEYFRAME_STATIC:
       if (stage_ != Stage::kKeyframeStart) return order_error("not after a SEQUENCE_HEADER");
       break;
+    case M4D_PACKET_STATIC_UPDATE:
+      if (stage_ != Stage::kInter) return order_error("not after a complete frame");
+      return CheckDependentKeyframe(h);
     case M4D_PACKET_KEYFRAME_DYNAMIC:
+      if (stage_ == Stage::kInter) return CheckDependentKeyframe(h);
       if (stage_ != Stage::kKeyframeStart && stage_ != Stage::kKeyframeStatic) {
-        return order_error("not after a SEQUENCE_HEADER or KEYFRAME_STATIC");
+        return order_error(
+            "not after a SEQUENCE_HEADER, KEYFRAME_STATIC, STATIC_UPDATE or "
+            "a complete frame");
       }
       break;
     case M4D_PACKET_MLP_WEIGHTS:
@@ -120,8 +128,23 @@ Status Decoder::CheckOrder(const PacketHeader& h) {
   return Status::Ok();
 }
 
+// A dependent keyframe (spec 2, 6.5) follows a complete frame, with the next frame index, in a
+// stream of version 0.3 or later.
+Status Decoder::CheckDependentKeyframe(const PacketHeader& h) const {
+  const std::string where =
+      std::string(PacketName(h.type)) + " (frame " + std::to_string(h.frame_index) + "): ";
+  if (!sequence_.allows_dependent_gops()) {
+    return BitstreamError(where + "a dependent keyframe in a version 0." +
+                          std::to_string(sequence_.version_minor) + " stream");
+  }
+  if (h.frame_index != frame_index_ + 1) {
+    return BitstreamError(where + "frame index not consecutive");
+  }
+  return Status::Ok();
+}
+
 Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
-  if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_COMPENSATION) {
+  if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_STATIC_UPDATE) {
     return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
   }
   if (h.type != M4D_PACKET_SEQUENCE_HEADER && stage_ == Stage::kNeedSequenceHeader) {
@@ -134,11 +157,12 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
   }
   if (h.type != M4D_PACKET_SEQUENCE_HEADER) M4D_RETURN_IF_ERROR(CheckOrder(h));
 
-  const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC;
+  const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC || h.type == M4D_PACKET_STATIC_UPDATE;
   const bool decode =
       h.type == M4D_PACKET_SEQUENCE_HEADER
           ? true
           : (is_static ? wants(M4D_LAYER_STATIC) && !background_ : wants(M4D_LAYER_DYNAMIC));
+  if (is_static && background_) static_known_ = false;
   if (decode && options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
     return Status(M4D_ERR_CHECKSUM, std::string(PacketName(h.type)) + " (frame " +
                                         std::to_string(h.frame_index) + "): payload CRC mismatch");
@@ -151,8 +175,14 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
       if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, true));
       stage_ = Stage::kKeyframeStatic;
       return Status::Ok();
+    case M4D_PACKET_STATIC_UPDATE:
+      if (decode && static_known_) M4D_RETURN_IF_ERROR(DecodeStaticUpdate(payload, size));
+      frame_index_ = h.frame_index;
+      stage_ = Stage::kKeyframeStatic;
+      return Status::Ok();
     case M4D_PACKET_KEYFRAME_DYNAMIC:
       if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, false));
+      frame_index_ = h.frame_index;
       stage_ = Stage::kKeyframeDynamic;
       return Status::Ok();
     case M4D_PACKET_MLP_WEIGHTS:
@@ -186,6 +216,7 @@ Status Decoder::DecodeSequenceHeader(const PacketHeader& h, const uint8_t* paylo
   auto empty_static = std::make_shared<GaussianSet>(options_.allocator);
   empty_static->sh_degree = sequence_.sh_degree;
   static_ = std::move(empty_static);  // stays empty in foreground-only streams
+  static_known_ = true;
   dynamic_ = std::make_shared<GaussianSet>(options_.allocator);
   dynamic_->sh_degree = sequence_.sh_degree;
   frame_index_ = h.frame_index;
@@ -230,31 +261,52 @@ Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   return Status::Ok();
 }
 
-Status Decoder::DecodeCompensation(const uint8_t* payload, size_t size) {
+Status Decoder::ReadSetChange(const uint8_t* payload, size_t size, const char* what, uint32_t n,
+                              Buffer<int32_t>* removed, uint32_t* num_removed, GaussianSet* added) {
+  const std::string prefix = std::string(what) + ": ";
   ByteReader reader(payload, size);
-  const uint32_t n = static_cast<uint32_t>(dynamic_->size());
-  uint32_t num_removed = 0;
-  if (!reader.ReadVarUint(&num_removed)) return BitstreamError("COMPENSATION: truncated");
-  if (num_removed > n) return BitstreamError("COMPENSATION: removes more Gaussians than exist");
-  Buffer<int32_t> removed{HookedAllocator<int32_t>(options_.allocator)};
-  if (num_removed > 0) {
-    removed.resize(n);
-    Status status = ReadSymbolBlock(&reader, n, 0, 1, removed.data());
-    if (!status.ok()) return Status(status.code(), "COMPENSATION: " + status.message());
+  if (!reader.ReadVarUint(num_removed)) return BitstreamError(prefix + "truncated");
+  if (*num_removed > n) return BitstreamError(prefix + "removes more Gaussians than exist");
+  if (*num_removed > 0) {
+    removed->resize(n);
+    Status status = ReadSymbolBlock(&reader, n, 0, 1, removed->data());
+    if (!status.ok()) return Status(status.code(), prefix + status.message());
     uint32_t ones = 0;
-    for (int32_t flag : removed) ones += static_cast<uint32_t>(flag);
-    if (ones != num_removed) return BitstreamError("COMPENSATION: removal count mismatch");
+    for (int32_t flag : *removed) ones += static_cast<uint32_t>(flag);
+    if (ones != *num_removed) return BitstreamError(prefix + "removal count mismatch");
   }
-  GaussianSet added(options_.allocator);
   const uint32_t max = MaxGaussians();
-  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, max, &added);
-  if (!status.ok()) return Status(status.code(), "COMPENSATION: " + status.message());
-  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "COMPENSATION"));
-  if (static_cast<uint64_t>(n - num_removed) + added.size() > max) {
-    return LimitError("COMPENSATION: dynamic set would exceed " + std::to_string(max));
+  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, max, added);
+  if (!status.ok()) return Status(status.code(), prefix + status.message());
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, what));
+  if (static_cast<uint64_t>(n - *num_removed) + added->size() > max) {
+    return LimitError(prefix + "the set would exceed " + std::to_string(max));
   }
-  GaussianSet* set = MutableDynamicSet();
-  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, set);
+  return Status::Ok();
+}
+
+Status Decoder::DecodeCompensation(const uint8_t* payload, size_t size) {
+  Buffer<int32_t> removed{HookedAllocator<int32_t>(options_.allocator)};
+  uint32_t num_removed = 0;
+  GaussianSet added(options_.allocator);
+  M4D_RETURN_IF_ERROR(ReadSetChange(payload, size, "COMPENSATION",
+                                    static_cast<uint32_t>(dynamic_->size()), &removed, &num_removed,
+                                    &added));
+  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, MutableDynamicSet());
+  return Status::Ok();
+}
+
+Status Decoder::DecodeStaticUpdate(const uint8_t* payload, size_t size) {
+  Buffer<int32_t> removed{HookedAllocator<int32_t>(options_.allocator)};
+  uint32_t num_removed = 0;
+  GaussianSet added(options_.allocator);
+  M4D_RETURN_IF_ERROR(ReadSetChange(payload, size, "STATIC_UPDATE",
+                                    static_cast<uint32_t>(static_->size()), &removed, &num_removed,
+                                    &added));
+  // Earlier frames share S: the update goes to a copy.
+  auto updated = std::make_shared<GaussianSet>(*static_);
+  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, updated.get());
+  static_ = std::move(updated);
   return Status::Ok();
 }
 
@@ -266,7 +318,15 @@ void Decoder::EmitFrame(uint32_t frame_index, bool is_keyframe) {
   auto empty = std::make_shared<const GaussianSet>();
   if (wants(M4D_LAYER_STATIC)) {
     frame_.layers |= M4D_LAYER_STATIC;
-    frame_.static_layer = background_ ? background_ : static_;
+    if (background_) {
+      frame_.static_layer = background_;
+    } else if (static_known_) {
+      frame_.static_layer = static_;
+    } else {
+      auto unknown = std::make_shared<GaussianSet>();
+      unknown->sh_degree = sequence_.sh_degree;
+      frame_.static_layer = std::move(unknown);
+    }
   } else {
     frame_.static_layer = empty;
   }

@@ -58,6 +58,8 @@ class Decoder {
   // The dynamic set after the last decoded packet: after a MOTION_GRID, the moved set the
   // following COMPENSATION edits (the encoder decides its compensation from it).
   const GaussianSet* dynamic_set() const { return dynamic_.get(); }
+  // The static set S of the stream (a dependent keyframe's STATIC_UPDATE refers to it).
+  const GaussianSet* static_set() const { return static_.get(); }
   const SequenceHeader& sequence_header() const { return sequence_; }
 
  private:
@@ -74,9 +76,14 @@ class Decoder {
   Status CheckOrder(const PacketHeader& header);
   Status DecodeSequenceHeader(const PacketHeader& header, const uint8_t* payload);
   Status DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_static);
+  Status DecodeStaticUpdate(const uint8_t* payload, size_t size);
   Status DecodeMlp(const uint8_t* payload, size_t size);
   Status DecodeMotion(const uint8_t* payload, size_t size);
   Status DecodeCompensation(const uint8_t* payload, size_t size);
+  // The syntax shared by COMPENSATION and STATIC_UPDATE (spec 4.5, 4.6) over a set of n.
+  Status ReadSetChange(const uint8_t* payload, size_t size, const char* what, uint32_t n,
+                       Buffer<int32_t>* removed, uint32_t* num_removed, GaussianSet* added);
+  Status CheckDependentKeyframe(const PacketHeader& header) const;
   void EmitFrame(uint32_t frame_index, bool is_keyframe);
   void Reset();
   GaussianSet* MutableDynamicSet();
@@ -88,6 +95,9 @@ class Decoder {
   uint32_t frame_index_ = 0;  // frame being decoded
   SequenceHeader sequence_;
   std::shared_ptr<const GaussianSet> static_;
+  // False once a static packet was skipped for a caller background: the stream's S is then
+  // unknown (empty) until the next SEQUENCE_HEADER (spec 6.6).
+  bool static_known_ = true;
   std::shared_ptr<GaussianSet> dynamic_;  // shared with output frames; copied on write
   std::shared_ptr<const GaussianSet> background_;
   MlpWeights mlp_;
