@@ -78,6 +78,10 @@ class SequenceEncoder {
   Status StartDependentGop(int frame, GaussianModel model, GaussianSet static_set,
                            double keyframe_seconds);
   Status OpenGop(int frame, double keyframe_seconds, bool dependent, TrainingViews* views);
+  // Per Gaussian of a new GOP's model, 1 for the dynamic layer (the lookahead decoupling; all 1
+  // without decoupling, all 0 when no frame follows).
+  Status DynamicFlags(int frame, const GaussianModel& model, const TrainingViews& views,
+                      std::vector<uint8_t>* dynamic);
   Status FinishGopStart(int frame, const TrainingViews& views);
   // Whether a GOP starting at `frame` keeps the static set (GopOptions::random_access_seconds).
   bool DependentGop(int frame) const;
