@@ -75,6 +75,33 @@ TEST(DependentGop, StaticSetStaysOrChangesByItsUpdate) {
   }
 }
 
+// The update changes S in place only when no frame handed out still holds it.
+TEST(DependentGop, AHeldFrameKeepsItsStaticLayer) {
+  const TestStream stream = MakeTestStream(DependentShape(50));
+  M4dContext* ctx = nullptr;
+  const M4dSettings settings = StaticOnly();
+  ASSERT_EQ(m4d_open(&ctx, &settings), M4D_OK);
+  M4dFrame held{};
+  std::string held_hash;
+  size_t frames = 0;
+  for (const Packet& p : stream.packets) {
+    ASSERT_EQ(m4d_send_packet(ctx, p.data(), p.size()), M4D_OK);
+    M4dFrame frame;
+    if (m4d_get_frame(ctx, &frame) != M4D_OK) continue;
+    if (++frames == kFramesPerGop) {
+      held = frame;  // the last frame before the first dependent keyframe
+      held_hash = HashOf(held);
+    } else {
+      m4d_frame_unref(&frame);
+    }
+  }
+  ASSERT_EQ(frames, 12u);
+  EXPECT_EQ(held.static_layer.count, 1500u);
+  EXPECT_EQ(HashOf(held), held_hash);
+  m4d_frame_unref(&held);
+  m4d_close(&ctx);
+}
+
 TEST(DependentGop, DecodingCannotStartThere) {
   const TestStream stream = MakeTestStream(DependentShape(50));
   const std::vector<Packet> tail(stream.packets.begin() + kFirstGopPackets, stream.packets.end());

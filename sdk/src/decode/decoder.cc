@@ -252,6 +252,11 @@ GaussianSet* Decoder::MutableDynamicSet() {
   return dynamic_.get();
 }
 
+GaussianSet* Decoder::MutableStaticSet() {
+  if (static_.use_count() > 1) static_ = std::make_shared<GaussianSet>(*static_);
+  return static_.get();
+}
+
 Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   ByteReader reader(payload, size);
   Status status = ReadMotionGrid(&reader, sequence_.grid, &grid_);
@@ -303,10 +308,7 @@ Status Decoder::DecodeStaticUpdate(const uint8_t* payload, size_t size) {
   M4D_RETURN_IF_ERROR(ReadSetChange(payload, size, "STATIC_UPDATE",
                                     static_cast<uint32_t>(static_->size()), &removed, &num_removed,
                                     &added));
-  // Earlier frames share S: the update goes to a copy.
-  auto updated = std::make_shared<GaussianSet>(*static_);
-  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, updated.get());
-  static_ = std::move(updated);
+  MergeCompensation(num_removed > 0 ? removed.data() : nullptr, added, MutableStaticSet());
   return Status::Ok();
 }
 

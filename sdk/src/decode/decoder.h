@@ -87,6 +87,7 @@ class Decoder {
   void EmitFrame(uint32_t frame_index, bool is_keyframe);
   void Reset();
   GaussianSet* MutableDynamicSet();
+  GaussianSet* MutableStaticSet();
   uint32_t MaxGaussians() const;
   bool wants(uint32_t layer) const { return (options_.layers & layer) != 0; }
 
@@ -94,7 +95,7 @@ class Decoder {
   Stage stage_ = Stage::kNeedSequenceHeader;
   uint32_t frame_index_ = 0;  // frame being decoded
   SequenceHeader sequence_;
-  std::shared_ptr<const GaussianSet> static_;
+  std::shared_ptr<GaussianSet> static_;  // shared with output frames; copied on write
   // False once a static packet was skipped for a caller background: the stream's S is then
   // unknown (empty) until the next SEQUENCE_HEADER (spec 6.6).
   bool static_known_ = true;
