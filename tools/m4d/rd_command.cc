@@ -19,11 +19,12 @@ struct RdArguments {
   SweepOutput out{"out/rd", false};
   std::vector<double> lambdas = PaperLambdas();
   std::vector<std::string> baselines = {"static", "dynamic"};
+  std::vector<std::string> anchors;  // earlier sweeps' rd.json
 };
 
 // A per-inter-frame figure, or "-" for a point without inter frames (the static baseline).
 std::string InterCell(const RdPoint& p, double value, int decimals) {
-  if (p.keyframe.size() == p.summary.keyframes) return "-";
+  if (p.summary.frames == p.summary.keyframes) return "-";
   char cell[32];
   std::snprintf(cell, sizeof(cell), "%.*f", decimals, value);
   return cell;
@@ -37,6 +38,20 @@ void PrintCurve(const RdCurve& curve) {
                 p.summary.kb_per_frame, InterCell(p, p.summary.kb_per_inter_frame, 2).c_str(),
                 p.summary.psnr, InterCell(p, p.inter_psnr, 2).c_str(), p.summary.ssim,
                 p.summary.keyframes, InterCell(p, p.summary.seconds_per_inter_frame, 1).c_str());
+  }
+}
+
+// KB per frame by layer at each rate point: where the bytes go along the curve.
+void PrintLayerTable(const RdCurve& curve) {
+  std::printf("\n%s: KB per frame by layer\n%-26s", curve.label.c_str(), "rate point");
+  for (const ReportLayer& layer : ReportLayers()) std::printf(" %13.13s", layer.label);
+  std::printf("\n");
+  for (const RdPoint& p : curve.points) {
+    std::printf("%-26s", p.name.c_str());
+    for (const ReportLayer& layer : ReportLayers()) {
+      std::printf(" %13.2f", p.summary.kb_per_frame_by_type[layer.packet_type]);
+    }
+    std::printf("\n");
   }
 }
 
@@ -67,6 +82,11 @@ Status RunBaselines(const RdArguments& args, std::vector<RdCurve>* curves) {
 }
 
 Status RunRd(RdArguments args) {
+  // The anchors are read before any encoding, so that a wrong path costs no hours.
+  std::vector<RdCurve> anchors(args.anchors.size());
+  for (size_t i = 0; i < anchors.size(); ++i) {
+    M4D_RETURN_IF_ERROR(LoadAnchorCurve(args.anchors[i], &anchors[i]));
+  }
   std::error_code ec;
   std::filesystem::create_directories(args.out.dir, ec);
   if (ec) return Status(M4D_ERR_INVALID_ARG, "cannot create " + args.out.dir);
@@ -75,11 +95,13 @@ Status RunRd(RdArguments args) {
   curves[0].label = "m4d";
   M4D_RETURN_IF_ERROR(RunSweep(args.encode, args.lambdas, args.out, "full", &curves[0]));
   M4D_RETURN_IF_ERROR(RunBaselines(args, &curves));
+  curves.insert(curves.end(), anchors.begin(), anchors.end());
   nlohmann::json doc = {{"curves", nlohmann::json::array()}, {"bd", nlohmann::json::array()}};
   for (const RdCurve& curve : curves) {
     PrintCurve(curve);
     doc["curves"].push_back(RdCurveJson(curve));
   }
+  PrintLayerTable(curves[0]);
   if (curves.size() > 1) {
     std::printf(
         "\nm4d against the baselines (PCHIP Bjontegaard over each RD envelope)\n%-30s %18s "
@@ -122,6 +144,10 @@ void AddRdCommand(CLI::App* app, int* exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember({"static", "dynamic", "none"}))
       ->capture_default_str();
+  cmd->add_option("--anchor", args->anchors,
+                  "an earlier sweep's rd.json (e.g. another encoder version's): its first curve "
+                  "is plotted and compared like a baseline (BD-rate); repeatable")
+      ->check(CLI::ExistingFile);
   cmd->callback([args, exit_code]() {
     if (args->baselines == std::vector<std::string>{"none"}) args->baselines.clear();
     *exit_code = ReportStatus("rd", RunRd(*args));

@@ -1,6 +1,7 @@
 #include "rd_sweep.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -90,6 +91,11 @@ Status ReadPoint(const std::string& json_path, RdPoint* point) {
       point->frame_psnr.push_back(f.at("psnr"));
       point->keyframe.push_back(f.at("keyframe"));
       if (!point->keyframe.back()) inter_sum += point->frame_psnr.back(), ++inter;
+      // Reports of bitstream 0.2 encoders have no static_update.
+      for (const ReportLayer& layer : ReportLayers()) {
+        m.kb_per_frame_by_type[layer.packet_type] +=
+            f.at("bytes").value(layer.key, 0.0) / 1000.0 / static_cast<double>(m.frames);
+      }
     }
     point->inter_psnr = inter ? inter_sum / inter : 0.0;
   } catch (const nlohmann::json::exception&) {
@@ -270,6 +276,10 @@ std::string BdCells(const nlohmann::json& compare, const char* scope) {
 nlohmann::json RdCurveJson(const RdCurve& curve) {
   nlohmann::json points = nlohmann::json::array();
   for (const RdPoint& p : curve.points) {
+    nlohmann::json by_layer = nlohmann::json::object();
+    for (const ReportLayer& layer : ReportLayers()) {
+      by_layer[layer.key] = p.summary.kb_per_frame_by_type[layer.packet_type];
+    }
     points.push_back({{"name", p.name},
                       {"lambda", p.lambda},
                       {"stream", p.stream},
@@ -280,9 +290,52 @@ nlohmann::json RdCurveJson(const RdCurve& curve) {
                       {"ssim", p.summary.ssim},
                       {"keyframes", p.summary.keyframes},
                       {"seconds_per_inter_frame", p.summary.seconds_per_inter_frame},
+                      {"kb_per_frame_by_layer", by_layer},
                       {"frame_psnr", p.frame_psnr}});
   }
   return {{"label", curve.label}, {"points", points}};
+}
+
+Status LoadAnchorCurve(const std::string& rd_json, RdCurve* curve) {
+  const auto invalid = [&](const std::string& why) {
+    return Status(M4D_ERR_INVALID_ARG, "anchor " + rd_json + ": " + why);
+  };
+  std::ifstream file(rd_json);
+  if (!file) return invalid("cannot read it");
+  const nlohmann::json doc = nlohmann::json::parse(file, nullptr, false);
+  try {
+    const nlohmann::json& first = doc.at("curves").at(0);
+    curve->label = first.at("label").get<std::string>() + " (" + rd_json + ")";
+    curve->points.clear();
+    for (const nlohmann::json& j : first.at("points")) {
+      RdPoint p;
+      p.name = j.at("name");
+      p.lambda = j.at("lambda");
+      p.stream = j.at("stream");
+      p.summary.kb_per_frame = j.at("kb_per_frame");
+      p.summary.kb_per_inter_frame = j.at("kb_per_inter_frame");
+      p.summary.psnr = j.at("psnr");
+      p.inter_psnr = j.at("inter_psnr");
+      p.summary.ssim = j.at("ssim");
+      p.summary.keyframes = j.at("keyframes");
+      p.summary.seconds_per_inter_frame = j.at("seconds_per_inter_frame");
+      p.frame_psnr = j.at("frame_psnr").get<std::vector<double>>();
+      p.summary.frames = p.frame_psnr.size();
+      // rd reports before the layer tables have none.
+      const nlohmann::json by_layer = j.value("kb_per_frame_by_layer", nlohmann::json::object());
+      for (const ReportLayer& layer : ReportLayers()) {
+        p.summary.kb_per_frame_by_type[layer.packet_type] = by_layer.value(layer.key, 0.0);
+      }
+      if (!(p.summary.kb_per_frame > 0) || !std::isfinite(p.summary.psnr)) {
+        return invalid("point " + p.name + " has no rate or PSNR");
+      }
+      curve->points.push_back(std::move(p));
+    }
+  } catch (const nlohmann::json::exception&) {
+    return invalid("not an m4d rd report (rd.json)");
+  }
+  if (curve->points.empty()) return invalid("its first curve has no points");
+  return Status::Ok();
 }
 
 Status PlotRdCurves(const std::vector<RdCurve>& curves, const std::string& png, RateScope scope) {

@@ -77,6 +77,11 @@ std::string BdCells(const nlohmann::json& compare, const char* scope);
 // The curve as JSON: per point lambda, stream, rates, PSNRs, time, PSNR per frame.
 nlohmann::json RdCurveJson(const RdCurve& curve);
 
+// The first curve of an earlier `m4d rd` report (its rd.json), e.g. another encoder
+// version's sweep kept as the anchor of a BD-rate; its label names the file.
+// M4D_ERR_INVALID_ARG when the file is missing or not such a report.
+Status LoadAnchorCurve(const std::string& rd_json, RdCurve* curve);
+
 // PSNR against KB per frame for each curve, with gnuplot; M4D_ERR_UNSUPPORTED when gnuplot
 // is missing.
 // Points joined by rate; over inter frames, curves without any are left out.

@@ -13,6 +13,18 @@ size_t Layer(const FrameReport& f, int type) { return f.bytes.by_type[type]; }
 
 }  // namespace
 
+const std::vector<ReportLayer>& ReportLayers() {
+  static const std::vector<ReportLayer> kLayers = {
+      {M4D_PACKET_SEQUENCE_HEADER, "sequence_header", "headers"},
+      {M4D_PACKET_KEYFRAME_STATIC, "static", "static key"},
+      {M4D_PACKET_STATIC_UPDATE, "static_update", "static update"},
+      {M4D_PACKET_KEYFRAME_DYNAMIC, "dynamic", "dynamic key"},
+      {M4D_PACKET_MLP_WEIGHTS, "mlp", "MLP weights"},
+      {M4D_PACKET_MOTION_GRID, "motion_grid", "motion grids"},
+      {M4D_PACKET_COMPENSATION, "compensation", "compensation"}};
+  return kLayers;
+}
+
 SequenceSummary Summarise(const SequenceReport& report) {
   SequenceSummary s;
   size_t inter_bytes = 0, key_bytes = 0;
@@ -22,6 +34,9 @@ SequenceSummary Summarise(const SequenceReport& report) {
     s.psnr += f.psnr;
     s.ssim += f.ssim;
     s.seconds += f.seconds.total();
+    for (size_t type = 0; type < f.bytes.by_type.size(); ++type) {
+      s.kb_per_frame_by_type[type] += Kb(f.bytes.by_type[type]);
+    }
     if (f.keyframe) {
       ++s.keyframes;
       key_bytes += f.bytes.total();
@@ -36,6 +51,7 @@ SequenceSummary Summarise(const SequenceReport& report) {
     s.kb_per_frame = Kb(report.stream_bytes) / static_cast<double>(s.frames);
     s.psnr /= static_cast<double>(s.frames);
     s.ssim /= static_cast<double>(s.frames);
+    for (double& kb : s.kb_per_frame_by_type) kb /= static_cast<double>(s.frames);
   }
   if (s.keyframes) {
     s.kb_per_keyframe = Kb(key_bytes) / static_cast<double>(s.keyframes);
@@ -77,6 +93,13 @@ void PrintSummary(std::FILE* out, const SequenceReport& report) {
                s.keyframe_psnr, s.ssim);
   std::fprintf(out, "%-34s %.1f s (%.1f s per inter frame)\n", "encoding time", s.seconds,
                s.seconds_per_inter_frame);
+  std::fprintf(out, "%-34s %8s %7s\n", "bytes by layer", "KB/frame", "share");
+  for (const ReportLayer& layer : ReportLayers()) {
+    const double kb = s.kb_per_frame_by_type[layer.packet_type];
+    if (kb == 0) continue;
+    std::fprintf(out, "  %-32s %8.2f %6.1f%%\n", layer.label, kb,
+                 s.kb_per_frame > 0 ? 100.0 * kb / s.kb_per_frame : 0.0);
+  }
 }
 
 Status WriteReportJson(const std::string& path, const SequenceReport& report,
@@ -84,14 +107,8 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
   using nlohmann::json;
   json frames = json::array();
   for (const FrameReport& f : report.frames) {
-    json bytes = {{"static", Layer(f, M4D_PACKET_KEYFRAME_STATIC)},
-                  {"dynamic", Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)},
-                  {"static_update", Layer(f, M4D_PACKET_STATIC_UPDATE)},
-                  {"mlp", Layer(f, M4D_PACKET_MLP_WEIGHTS)},
-                  {"sequence_header", Layer(f, M4D_PACKET_SEQUENCE_HEADER)},
-                  {"motion_grid", Layer(f, M4D_PACKET_MOTION_GRID)},
-                  {"compensation", Layer(f, M4D_PACKET_COMPENSATION)},
-                  {"total", f.bytes.total()}};
+    json bytes = {{"total", f.bytes.total()}};
+    for (const ReportLayer& layer : ReportLayers()) bytes[layer.key] = Layer(f, layer.packet_type);
     json seconds = {{"keyframe", f.seconds.keyframe}, {"decoupling", f.seconds.decoupling},
                     {"motion", f.seconds.motion},     {"compensation", f.seconds.compensation},
                     {"coding", f.seconds.coding},     {"evaluation", f.seconds.evaluation},
@@ -116,6 +133,10 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                       {"seconds", seconds}});
   }
   const SequenceSummary s = Summarise(report);
+  json by_layer = json::object();
+  for (const ReportLayer& layer : ReportLayers()) {
+    by_layer[layer.key] = s.kb_per_frame_by_type[layer.packet_type];
+  }
   json doc = {{"frames", frames},
               {"summary",
                {{"frames", s.frames},
@@ -128,7 +149,8 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                 {"keyframe_psnr", s.keyframe_psnr},
                 {"ssim", s.ssim},
                 {"seconds", s.seconds},
-                {"seconds_per_inter_frame", s.seconds_per_inter_frame}}}};
+                {"seconds_per_inter_frame", s.seconds_per_inter_frame},
+                {"kb_per_frame_by_layer", by_layer}}}};
   if (!extra_json_object.empty()) {
     json extra = json::parse(extra_json_object, nullptr, false);
     if (extra.is_object()) doc.update(extra);

@@ -3,13 +3,25 @@
 #ifndef M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
 #define M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
 
+#include <array>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 #include "pipeline/frame_report.h"
 
 namespace m4d {
+
+// A layer of the stream as the reports name it: its packet type, its key in the JSON reports
+// and its label in the tables.
+struct ReportLayer {
+  int packet_type;
+  const char* key;
+  const char* label;  // at most 13 characters, a table column
+};
+// Every packet type, in the order of the stream's syntax.
+const std::vector<ReportLayer>& ReportLayers();
 
 struct SequenceSummary {
   size_t frames = 0, keyframes = 0;
@@ -20,6 +32,8 @@ struct SequenceSummary {
   double keyframe_psnr = 0;            // mean over keyframes
   double seconds = 0;                  // all stages, all frames
   double seconds_per_inter_frame = 0;  // motion + compensation + coding + evaluation
+  // Where the bytes go: KB per frame (all frames) by packet type, headers included.
+  std::array<double, 8> kb_per_frame_by_type{};
 };
 
 SequenceSummary Summarise(const SequenceReport& report);
