@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds, checks formatting, checks that a clang
 # Debug build decodes bit-identically to the gcc Release build, runs our decoder through the
-# conformance runner, runs a short fuzz session, runs the whole test suite, then builds
+# conformance runner, runs a short fuzz session, runs the whole test suite, installs the SDK
+# alone and builds out-of-tree consumers against it, then builds
 # everything with ASan and UBSan and runs the whole test suite again under them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,4 +14,5 @@ scripts/compare_builds.sh
 scripts/conformance_run.sh --layers-flag --layers build/release/tools/m4d_decode | tail -1
 scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
 ctest --test-dir build/release --output-on-failure -j2
+scripts/check_install.sh
 scripts/sanitize.sh

@@ -38,6 +38,15 @@ extern "C" {
 #define M4D_API
 #endif
 
+/* ABI version of this API (the shared library's soname is libm4d.so.MAJOR). MAJOR rises with
+ * any change that breaks a program built against an earlier header (a struct's layout, a
+ * removed function, changed semantics), MINOR with additions (a function, a setting taken from
+ * a reserved field), PATCH with fixes. A program built against MAJOR.MINOR runs with any library
+ * of the same MAJOR and a MINOR at least as high. */
+#define M4D_API_VERSION_MAJOR 1
+#define M4D_API_VERSION_MINOR 0
+#define M4D_API_VERSION_PATCH 0
+
 /* Library version (of this SDK), and the bitstream version it decodes. */
 #define M4D_VERSION_MAJOR 0
 #define M4D_VERSION_MINOR 5
