@@ -12,6 +12,7 @@
 
 #include "common/byte_reader.h"
 #include "common/byte_writer.h"
+#include "common/thread_pool.h"
 #include "decode/motion_application.h"
 #include "entropy/symbol_block_reader.h"
 #include "entropy/symbol_block_writer.h"
@@ -749,6 +750,20 @@ GaussianSet Prefix(const GaussianSet& set, size_t count) {
 bool SameBits(const Buffer<float>& a, const Buffer<float>& b) {
   return a.size() == b.size() &&
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
+TEST(MotionApplicationTest, AThreadPoolGivesTheSameBits) {
+  std::mt19937 rng(11);
+  ThreadPool pool(3);
+  for (int trial = 0; trial < 4; ++trial) {
+    const RandomCase rc = MakeRandomCase(&rng, trial == 0, 20000);
+    GaussianSet alone = rc.set, pooled = rc.set;
+    ApplyMotion(rc.config, rc.grid, rc.mlp, &alone);
+    ApplyMotion(rc.config, rc.grid, rc.mlp, &pooled, &pool);
+    ASSERT_TRUE(SameBits(pooled.positions, alone.positions)) << "trial " << trial;
+    ASSERT_TRUE(SameBits(pooled.rotations, alone.rotations)) << "trial " << trial;
+    ASSERT_FALSE(SameBits(alone.positions, rc.set.positions)) << "nothing moved";
+  }
 }
 
 TEST(MotionApplicationTest, BitIdenticalToReference) {

@@ -18,6 +18,8 @@ struct Options {
   std::string output;
   std::string layers = "all";
   int start_gop = 0;
+  int64_t start_frame = -1;
+  int threads = 1;
   bool quiet = false;
 };
 
@@ -59,6 +61,13 @@ int main(int argc, char** argv) {
                  "seek: start decoding at this random-access GOP (0-based; dependent GOPs "
                  "are not counted: decoding cannot start there)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--start-frame", opt.start_frame,
+                 "seek: decode from the random-access point at or before this frame index and "
+                 "print the frames from it on (m4d_find_random_access)")
+      ->check(CLI::Range(int64_t{0}, int64_t{UINT32_MAX}))
+      ->excludes("--start-gop");
+  app.add_option("--threads", opt.threads, "decoder threads (0: every core); output is the same")
+      ->check(CLI::Range(0, 256));
   app.add_flag("-q,--quiet", opt.quiet, "no summary on stderr");
   CLI11_PARSE(app, argc, argv);
 
@@ -81,16 +90,33 @@ int main(int argc, char** argv) {
                     : opt.layers == "dynamic" ? M4D_LAYER_DYNAMIC
                                               : M4D_LAYER_ALL;
   settings.logger.callback = LogToStderr;
+  settings.threads = opt.threads;
   M4dContext* ctx = nullptr;
   if (m4d_open(&ctx, &settings) < 0) return 2;
 
   int errors = 0, frames = 0, gop = -1;
   size_t pos = 0, skipped = 0;
+  if (opt.start_frame >= 0) {
+    uint32_t first = 0;
+    const uint32_t target = static_cast<uint32_t>(opt.start_frame);
+    const int r = m4d_find_random_access(data.data(), data.size(), target, &pos, &first);
+    if (r < 0) {
+      std::fprintf(stderr, "m4d_decode: cannot seek to frame %u: %s\n", target,
+                   r == M4D_ERR_AGAIN ? "the stream holds no such frame"
+                                      : "no random-access point precedes it");
+      m4d_close(&ctx);
+      return 1;
+    }
+  }
   double decode_ms = 0;
   M4dPacketInfo info;
   auto drain = [&]() {
     M4dFrame frame;
     while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+      if (static_cast<int64_t>(frame.frame_index) < opt.start_frame) {
+        m4d_frame_unref(&frame);  // decoded only to reach the frame sought
+        continue;
+      }
       uint8_t md5[16];
       char hex[33];
       m4d_frame_hash(&frame, md5);
@@ -119,7 +145,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (info.type == M4D_PACKET_SEQUENCE_HEADER) ++gop;
-    if (gop >= opt.start_gop) {
+    if (gop >= opt.start_gop || opt.start_frame >= 0) {
       const auto t0 = std::chrono::steady_clock::now();
       r = m4d_send_packet(ctx, &data[pos], info.packet_size);
       if (r == M4D_ERR_AGAIN) {
@@ -138,11 +164,26 @@ int main(int argc, char** argv) {
     }
     pos += info.packet_size;
   }
+  M4dStreamInfo stream;
+  const bool configured = m4d_get_stream_info(ctx, &stream) == M4D_OK;
   m4d_close(&ctx);
   if (out != stdout) std::fclose(out);
+  if (opt.start_frame < 0 && gop < opt.start_gop) {
+    std::fprintf(stderr,
+                 "m4d_decode: cannot start at GOP %d: the stream has %d random-access GOPs\n",
+                 opt.start_gop, gop + 1);
+    return 1;
+  }
   if (!opt.quiet) {
     std::fprintf(stderr, "m4d_decode: %d frames, %d packet errors, %zu bytes skipped, %.1f ms\n",
                  frames, errors, skipped, decode_ms);
+    if (configured) {
+      std::fprintf(stderr,
+                   "m4d_decode: bitstream %u.%u, %u/%u fps, SH degree %u, %u GOPs (%u random "
+                   "access), %u frames declared\n",
+                   stream.bitstream_major, stream.bitstream_minor, stream.fps_num, stream.fps_den,
+                   stream.sh_degree, stream.gops, stream.random_access_gops, stream.num_frames);
+    }
   }
   return (errors > 0 || skipped > 0) ? 1 : 0;
 }

@@ -47,7 +47,7 @@ struct Options {
   std::string background_ply, background_stream;
   std::vector<float> background = {0, 0, 0};
   int frames = 0;  // 0: all
-  double fps = 30;
+  double fps = 0;  // 0: the stream's own frame rate
   int sh_degree = 3;
 };
 
@@ -430,7 +430,7 @@ class Player {
     if (status.ok() && !options_.mp4.empty()) {
       if (!video_) {
         m4d::VideoWriterOptions video;
-        video.fps = options_.fps;
+        video.fps = options_.fps > 0 ? options_.fps : StreamFps();
         status = m4d::VideoWriter::Open(options_.mp4, image.width & ~1, image.height & ~1, video,
                                         &video_);
       }
@@ -466,6 +466,13 @@ class Player {
     if (!options_.png_dir.empty()) std::printf("PNG frames in %s\n", options_.png_dir.c_str());
     if (video_) std::printf("video %s (%s)\n", options_.mp4.c_str(), video_->codec_name().c_str());
     return true;
+  }
+
+  // The frame rate the stream declares (its SEQUENCE_HEADER), read once a frame is decoded.
+  double StreamFps() const {
+    M4dStreamInfo info;
+    if (m4d_get_stream_info(decoder_, &info) != M4D_OK || info.fps_den == 0) return 30;
+    return static_cast<double>(info.fps_num) / info.fps_den;
   }
 
   Options options_;
@@ -518,7 +525,8 @@ int main(int argc, char** argv) {
       ->expected(3)
       ->check(CLI::Range(0.0f, 1.0f));
   app.add_option("--frames", o.frames, "frames to play (0: all)")->check(CLI::NonNegativeNumber);
-  app.add_option("--fps", o.fps, "frame rate of the MP4")->check(CLI::Range(1.0, 240.0));
+  app.add_option("--fps", o.fps, "frame rate of the MP4 (default: the stream's)")
+      ->check(CLI::Range(1.0, 240.0));
   app.add_option("--sh-degree", o.sh_degree, "largest SH degree evaluated")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();

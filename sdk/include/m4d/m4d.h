@@ -116,8 +116,23 @@ typedef struct M4dSettings {
   int verify_checksums;
   M4dLogger logger;       /* default: no logging */
   M4dAllocator allocator; /* default: malloc/free */
-  uint8_t reserved[32];   /* for future settings; must stay zero */
+  /* Threads decoding may use, the caller's included: 1 decodes on the calling thread only,
+   * 0 uses every core, at most 256. Only work whose result cannot depend on it is split
+   * (motion of the dynamic Gaussians, one Gaussian per task): output is bit-identical at
+   * every count. Default: 1. */
+  int threads;
+  uint8_t reserved[32]; /* for future settings; must stay zero */
 } M4dSettings;
+
+/* What a caller attaches to a packet (m4d_send_packet_props) and gets back with the frame
+ * the packet completes, dav1d's Dav1dDataProps: the decoder never reads it. */
+typedef struct M4dDataProps {
+  int64_t timestamp; /* the caller's presentation time; INT64_MIN (default): none */
+  int64_t duration;  /* the caller's duration; 0 (default): none */
+  int64_t offset;    /* e.g. the packet's byte offset in a file; -1 (default): none */
+  void* user_data;   /* anything; NULL by default */
+  uint8_t reserved[16];
+} M4dDataProps;
 
 /* One layer's Gaussians. Values are as coded (before activation): log scales, opacity logits,
  * unnormalised rotation quaternions (w, x, y, z), SH coefficients. Arrays hold count entries of
@@ -131,6 +146,7 @@ typedef struct M4dGaussians {
   const float* rotations;      /* 4 per Gaussian: w, x, y, z */
   const float* opacity_logits; /* 1 per Gaussian */
   const float* sh;             /* 3 * sh_coefficients per Gaussian: [k][r, g, b] */
+  uint8_t reserved[16];        /* zero; room for later fields */
 } M4dGaussians;
 
 /* A decoded frame: the Gaussian state of frame frame_index. */
@@ -141,7 +157,11 @@ typedef struct M4dFrame {
   uint32_t layers;            /* the layers this frame outputs (M4D_LAYER_* bits) */
   M4dGaussians static_layer;  /* background; count 0 if not output */
   M4dGaussians dynamic_layer; /* foreground; count 0 if not output */
-  void* internal;             /* owned by the library; release with m4d_frame_unref */
+  /* The props sent with the packet that completed this frame (its last packet: MLP_WEIGHTS or
+   * COMPENSATION); the defaults of M4dDataProps when that packet came without. */
+  M4dDataProps props;
+  void* internal;       /* owned by the library; release with m4d_frame_unref */
+  uint8_t reserved[32]; /* zero; room for later fields */
 } M4dFrame;
 
 /* What m4d_parse_packet_header reads from a packet header. */
@@ -151,7 +171,28 @@ typedef struct M4dPacketInfo {
   int end_of_frame;
   uint32_t payload_size;
   size_t packet_size; /* header plus payload */
+  uint8_t reserved[16];
 } M4dPacketInfo;
+
+/* What the decoder knows of the stream (m4d_get_stream_info): the configuration of the last
+ * SEQUENCE_HEADER it decoded and what it has seen since it was opened. */
+typedef struct M4dStreamInfo {
+  uint32_t bitstream_major, bitstream_minor; /* of the stream, e.g. 0.3 */
+  uint32_t profile;
+  uint32_t sh_degree; /* 0..3 */
+  uint32_t fps_num;   /* frame rate fps_num / fps_den, as the stream declares it */
+  uint32_t fps_den;
+  uint32_t num_frames; /* frames the stream declares; 0: not declared (e.g. live) */
+  /* M4D_LAYER_STATIC when the current random-access GOP codes a static layer
+   * (KEYFRAME_STATIC), M4D_LAYER_DYNAMIC always. */
+  uint32_t layers_coded;
+  uint32_t frames_decoded;           /* frames output so far (m4d_get_frame) */
+  uint32_t gops;                     /* keyframes decoded so far, dependent ones included */
+  uint32_t random_access_gops;       /* of which started with a SEQUENCE_HEADER */
+  uint32_t last_keyframe_index;      /* frame index of the last keyframe decoded */
+  uint32_t last_random_access_index; /* frame index of the last random-access keyframe */
+  uint8_t reserved[64];
+} M4dStreamInfo;
 
 /* Opaque decoder context. */
 typedef struct M4dContext M4dContext;
@@ -188,6 +229,18 @@ M4D_API int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketI
  * M4D_ERR_INVALID_ARG for NULL arguments. */
 M4D_API int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4dPacketInfo* info);
 
+/* Finds where to start decoding to reach frame `frame_index`, for seeking: scans `data` (a
+ * stream from its start, or from any packet boundary) and returns 0 with *offset, the byte
+ * offset of the SEQUENCE_HEADER of the last random-access GOP that starts at or before the
+ * frame, and *start_frame, that GOP's first frame. Call m4d_flush, send packets from
+ * data + *offset, and drop the frames before frame_index. Returns M4D_ERR_AGAIN when no packet
+ * of frame_index is in data (a complete stream then does not hold that frame; a partial one
+ * may, later), M4D_ERR_BITSTREAM when packets of the frame are found but no random-access GOP
+ * starts before them, M4D_ERR_INVALID_ARG for NULL pointers. Damaged bytes are skipped as
+ * m4d_find_packet does. */
+M4D_API int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t frame_index,
+                                   size_t* offset, uint32_t* start_frame);
+
 /* Sends one whole packet (header and payload, exactly size bytes) to the decoder. The data is
  * not retained after the call. Returns:
  *   0                 the packet was consumed (a frame may now be ready);
@@ -197,6 +250,19 @@ M4D_API int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4
  *                     decoder then skips packets until the next SEQUENCE_HEADER, so a caller
  *                     may simply continue sending. */
 M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
+
+/* m4d_send_packet with props that come back in M4dFrame.props of the frame this packet
+ * completes (NULL: the defaults). */
+M4D_API int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
+                                  const M4dDataProps* props);
+
+/* Fills *props with the defaults documented in M4dDataProps. */
+M4D_API void m4d_default_data_props(M4dDataProps* props);
+
+/* Fills *info with what the decoder knows of the stream. Returns M4D_ERR_AGAIN before the
+ * first SEQUENCE_HEADER was decoded (info is then zeroed), M4D_ERR_INVALID_ARG for NULL
+ * pointers. */
+M4D_API int m4d_get_stream_info(const M4dContext* c, M4dStreamInfo* info);
 
 /* Takes the next decoded frame. Returns 0 and fills *out, or M4D_ERR_AGAIN when no frame is
  * ready (send more packets). The caller owns the frame until m4d_frame_unref. */

@@ -59,6 +59,7 @@ typedef struct M4dRenderCamera {
   float rotation[9];      /* world-to-camera rotation, row-major (orthonormal) */
   float translation[3];   /* x_cam = rotation * x_world + translation */
   float near_plane;       /* Gaussians at depth <= near_plane are culled; e.g. 0.2 */
+  uint8_t reserved[16];   /* zero (memset the struct); room for later fields */
 } M4dRenderCamera;
 
 /* Renderer settings. Always initialise with m4d_renderer_default_settings(). */
@@ -88,6 +89,7 @@ typedef struct M4dRenderStats {
   double sort_ms;    /* depth sort of the visible splats (CPU) */
   double upload_ms;  /* instance data to the GL buffer */
   double draw_ms;    /* GL draw calls until finished (glFinish) */
+  uint8_t reserved[32];
 } M4dRenderStats;
 
 /* Opaque renderer. */

@@ -1,5 +1,6 @@
 // The C API of the SDK (sdk/include/m4d/m4d.h) over the C++ Decoder. Nothing may throw
 // through this boundary: allocation failures become M4D_ERR_NOMEM.
+#include <climits>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -14,6 +15,7 @@ struct M4dContext {
   M4dSettings settings;
   std::unique_ptr<m4d::Decoder> decoder;
   std::string last_error;
+  M4dDataProps frame_props;  // of the packet that completed the pending frame
 };
 
 namespace {
@@ -42,6 +44,8 @@ bool ReservedZero(const M4dSettings* s) {
   }
   return true;
 }
+
+constexpr int kMaxThreads = 256;
 
 }  // namespace
 
@@ -82,6 +86,14 @@ void m4d_default_settings(M4dSettings* s) {
   std::memset(s, 0, sizeof(*s));
   s->layers = M4D_LAYER_ALL;
   s->verify_checksums = 1;
+  s->threads = 1;
+}
+
+void m4d_default_data_props(M4dDataProps* props) {
+  if (!props) return;
+  std::memset(props, 0, sizeof(*props));
+  props->timestamp = INT64_MIN;
+  props->offset = -1;
 }
 
 int m4d_open(M4dContext** c_out, const M4dSettings* s) {
@@ -89,7 +101,8 @@ int m4d_open(M4dContext** c_out, const M4dSettings* s) {
   *c_out = nullptr;
   if (!s || s->layers == 0 || (s->layers & ~M4D_LAYER_ALL) != 0 || !ReservedZero(s) ||
       (s->allocator.alloc == nullptr) != (s->allocator.free == nullptr) ||
-      (s->verify_checksums != 0 && s->verify_checksums != 1)) {
+      (s->verify_checksums != 0 && s->verify_checksums != 1) || s->threads < 0 ||
+      s->threads > kMaxThreads) {
     return M4D_ERR_INVALID_ARG;
   }
   M4dContext* c = new (std::nothrow) M4dContext();
@@ -100,6 +113,7 @@ int m4d_open(M4dContext** c_out, const M4dSettings* s) {
   options.max_gaussians = s->max_gaussians;
   options.max_grid_values = s->max_grid_values;
   options.verify_checksums = s->verify_checksums != 0;
+  options.threads = s->threads;
   options.allocator = &c->settings.allocator;
   options.log = [c](int level, const std::string& message) { Log(c, level, message); };
   try {
@@ -108,6 +122,7 @@ int m4d_open(M4dContext** c_out, const M4dSettings* s) {
     delete c;
     return M4D_ERR_NOMEM;
   }
+  m4d_default_data_props(&c->frame_props);
   *c_out = c;
   return M4D_OK;
 }
@@ -141,7 +156,41 @@ int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4dPacketI
   return M4D_ERR_AGAIN;
 }
 
+int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t frame_index, size_t* offset,
+                           uint32_t* start_frame) {
+  if (!data || !offset || !start_frame) return M4D_ERR_INVALID_ARG;
+  bool have_start = false;  // a SEQUENCE_HEADER seen so far: the last one's offset and frame
+  size_t start = 0;
+  uint32_t first = 0;
+  size_t pos = 0;
+  while (pos < size) {
+    size_t skip = 0;
+    M4dPacketInfo info;
+    if (m4d_find_packet(data + pos, size - pos, &skip, &info) != M4D_OK) break;
+    pos += skip;
+    if (info.type == M4D_PACKET_SEQUENCE_HEADER) {
+      have_start = true;
+      start = pos;
+      first = info.frame_index;
+    }
+    // The first packet of the frame: its GOP's SEQUENCE_HEADER, if any, came before it.
+    if (info.frame_index == frame_index) {
+      if (!have_start) return M4D_ERR_BITSTREAM;
+      *offset = start;
+      *start_frame = first;
+      return M4D_OK;
+    }
+    pos += info.packet_size;
+  }
+  return M4D_ERR_AGAIN;
+}
+
 int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size) {
+  return m4d_send_packet_props(c, data, size, nullptr);
+}
+
+int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
+                          const M4dDataProps* props) {
   if (!c) return M4D_ERR_INVALID_ARG;
   if (!data) return Fail(c, M4D_ERR_INVALID_ARG, "m4d_send_packet: data is NULL");
   if (c->decoder->HasFrame()) return M4D_ERR_AGAIN;
@@ -149,6 +198,13 @@ int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size) {
   try {
     const m4d::Status status = c->decoder->SendPacket(data, size);
     if (!status.ok()) return Fail(c, status.code(), status.message());
+    if (c->decoder->HasFrame()) {
+      if (props) {
+        c->frame_props = *props;
+      } else {
+        m4d_default_data_props(&c->frame_props);
+      }
+    }
   } catch (const std::bad_alloc&) {
     c->decoder->Flush();
     return Fail(c, M4D_ERR_NOMEM, "out of memory while decoding a packet");
@@ -170,7 +226,29 @@ int m4d_get_frame(M4dContext* c, M4dFrame* out) {
   out->layers = frame.layers;
   out->static_layer = m4d::GaussianView(*refs->static_layer);
   out->dynamic_layer = m4d::GaussianView(*refs->dynamic_layer);
+  out->props = c->frame_props;
   out->internal = refs;
+  return M4D_OK;
+}
+
+int m4d_get_stream_info(const M4dContext* c, M4dStreamInfo* info) {
+  if (!c || !info) return M4D_ERR_INVALID_ARG;
+  std::memset(info, 0, sizeof(*info));
+  const m4d::StreamStats& s = c->decoder->stream_stats();
+  if (!s.configured) return M4D_ERR_AGAIN;
+  info->bitstream_major = static_cast<uint32_t>(s.sequence.version_major);
+  info->bitstream_minor = static_cast<uint32_t>(s.sequence.version_minor);
+  info->profile = static_cast<uint32_t>(s.sequence.profile);
+  info->sh_degree = static_cast<uint32_t>(s.sequence.sh_degree);
+  info->fps_num = s.sequence.fps_num;
+  info->fps_den = s.sequence.fps_den;
+  info->num_frames = s.sequence.num_frames;
+  info->layers_coded = M4D_LAYER_DYNAMIC | (s.static_coded ? M4D_LAYER_STATIC : 0u);
+  info->frames_decoded = s.frames;
+  info->gops = s.gops;
+  info->random_access_gops = s.random_access_gops;
+  info->last_keyframe_index = s.last_keyframe;
+  info->last_random_access_index = s.last_random_access;
   return M4D_OK;
 }
 

@@ -45,7 +45,9 @@ Status RequireConsumed(const ByteReader& reader, const char* what) {
 
 }  // namespace
 
-Decoder::Decoder(const DecoderOptions& options) : options_(options), grid_(options.allocator) {}
+Decoder::Decoder(const DecoderOptions& options) : options_(options), grid_(options.allocator) {
+  if (options.threads != 1) pool_ = std::make_unique<ThreadPool>(options.threads);
+}
 
 uint32_t Decoder::MaxGaussians() const {
   return (options_.max_gaussians == 0 || options_.max_gaussians > kMaxGaussiansPerSet)
@@ -72,6 +74,7 @@ void Decoder::SetBackground(std::shared_ptr<const GaussianSet> background) {
 
 DecodedFrame Decoder::TakeFrame() {
   has_frame_ = false;
+  ++stats_.frames;
   return std::exchange(frame_, DecodedFrame());
 }
 
@@ -173,21 +176,25 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
       return DecodeSequenceHeader(h, payload);
     case M4D_PACKET_KEYFRAME_STATIC:
       if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, true));
+      stats_.static_coded = true;
       stage_ = Stage::kKeyframeStatic;
       return Status::Ok();
     case M4D_PACKET_STATIC_UPDATE:
       if (decode && static_known_) M4D_RETURN_IF_ERROR(DecodeStaticUpdate(payload, size));
+      gop_random_access_ = false;
       frame_index_ = h.frame_index;
       stage_ = Stage::kKeyframeStatic;
       return Status::Ok();
     case M4D_PACKET_KEYFRAME_DYNAMIC:
       if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, false));
+      if (stage_ == Stage::kInter) gop_random_access_ = false;  // a dependent keyframe
       frame_index_ = h.frame_index;
       stage_ = Stage::kKeyframeDynamic;
       return Status::Ok();
     case M4D_PACKET_MLP_WEIGHTS:
       if (decode) M4D_RETURN_IF_ERROR(DecodeMlp(payload, size));
       stage_ = Stage::kInter;
+      CountKeyframe(h.frame_index);
       EmitFrame(h.frame_index, true);
       return Status::Ok();
     case M4D_PACKET_MOTION_GRID:
@@ -221,7 +228,20 @@ Status Decoder::DecodeSequenceHeader(const PacketHeader& h, const uint8_t* paylo
   dynamic_->sh_degree = sequence_.sh_degree;
   frame_index_ = h.frame_index;
   stage_ = Stage::kKeyframeStart;
+  gop_random_access_ = true;
+  stats_.configured = true;
+  stats_.sequence = sequence_;
+  stats_.static_coded = false;
   return Status::Ok();
+}
+
+void Decoder::CountKeyframe(uint32_t frame_index) {
+  ++stats_.gops;
+  stats_.last_keyframe = frame_index;
+  if (gop_random_access_) {
+    ++stats_.random_access_gops;
+    stats_.last_random_access = frame_index;
+  }
 }
 
 Status Decoder::DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_static) {
@@ -262,7 +282,7 @@ Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   Status status = ReadMotionGrid(&reader, sequence_.grid, &grid_);
   if (!status.ok()) return Status(status.code(), "MOTION_GRID: " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MOTION_GRID"));
-  ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet());
+  ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet(), pool_.get());
   return Status::Ok();
 }
 

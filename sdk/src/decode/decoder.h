@@ -12,6 +12,7 @@
 #include "bitstream/packet_header.h"
 #include "bitstream/sequence_header.h"
 #include "common/status.h"
+#include "common/thread_pool.h"
 #include "layers/gaussian_set.h"
 #include "layers/mlp_weights.h"
 #include "layers/motion_grid.h"
@@ -23,6 +24,7 @@ struct DecoderOptions {
   uint32_t max_gaussians = 0;    // 0: the spec's limit
   uint32_t max_grid_values = 0;  // 0: the spec's limit
   bool verify_checksums = true;
+  int threads = 1;                          // 0: every core (M4dSettings.threads)
   const M4dAllocator* allocator = nullptr;  // must outlive the decoder
   std::function<void(int level, const std::string& message)> log;
 };
@@ -35,6 +37,19 @@ struct DecodedFrame {
   uint32_t layers = 0;
   std::shared_ptr<const GaussianSet> static_layer;
   std::shared_ptr<const GaussianSet> dynamic_layer;
+};
+
+// What the decoder has seen of the stream since it was made (a flush keeps it): the last
+// configuration and the GOP structure (M4dStreamInfo).
+struct StreamStats {
+  bool configured = false;    // a SEQUENCE_HEADER was decoded
+  SequenceHeader sequence;    // the last one decoded
+  bool static_coded = false;  // the current random-access GOP has a KEYFRAME_STATIC
+  uint32_t frames = 0;        // frames taken (TakeFrame)
+  uint32_t gops = 0;
+  uint32_t random_access_gops = 0;
+  uint32_t last_keyframe = 0;
+  uint32_t last_random_access = 0;
 };
 
 class Decoder {
@@ -61,6 +76,7 @@ class Decoder {
   // The static set S of the stream (a dependent keyframe's STATIC_UPDATE refers to it).
   const GaussianSet* static_set() const { return static_.get(); }
   const SequenceHeader& sequence_header() const { return sequence_; }
+  const StreamStats& stream_stats() const { return stats_; }
 
  private:
   enum class Stage {
@@ -85,6 +101,7 @@ class Decoder {
                        Buffer<int32_t>* removed, uint32_t* num_removed, GaussianSet* added);
   Status CheckDependentKeyframe(const PacketHeader& header) const;
   void EmitFrame(uint32_t frame_index, bool is_keyframe);
+  void CountKeyframe(uint32_t frame_index);
   void Reset();
   GaussianSet* MutableDynamicSet();
   GaussianSet* MutableStaticSet();
@@ -105,6 +122,9 @@ class Decoder {
   MotionGrid grid_;
   bool has_frame_ = false;
   DecodedFrame frame_;
+  bool gop_random_access_ = false;  // the GOP being decoded started with a SEQUENCE_HEADER
+  StreamStats stats_;
+  std::unique_ptr<ThreadPool> pool_;  // none when decoding on the caller's thread only
 };
 
 }  // namespace m4d

@@ -4,6 +4,7 @@
 #ifndef M4D_DECODE_MOTION_APPLICATION_H_
 #define M4D_DECODE_MOTION_APPLICATION_H_
 
+#include "common/thread_pool.h"
 #include "layers/gaussian_set.h"
 #include "layers/mlp_weights.h"
 #include "layers/motion_config.h"
@@ -18,13 +19,14 @@ enum class MotionKernelKind { kBaseline, kAvx512 };
 bool MotionKernelSupported(MotionKernelKind kind);
 
 // Moves every Gaussian of *set in place (positions and rotations), as spec 6.3 says, with the
-// fastest supported kernel.
+// fastest supported kernel; spread over `pool` when given (each Gaussian is computed alone, so
+// the result is the same at any thread count).
 void ApplyMotion(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
-                 GaussianSet* set);
+                 GaussianSet* set, ThreadPool* pool = nullptr);
 
 // The same with a given kernel, which must be supported (for tests and benchmarks).
 void ApplyMotionWith(MotionKernelKind kind, const GridConfig& config, const MotionGrid& grid,
-                     const MlpWeights& mlp, GaussianSet* set);
+                     const MlpWeights& mlp, GaussianSet* set, ThreadPool* pool = nullptr);
 
 }  // namespace m4d
 

@@ -340,14 +340,13 @@ class MotionKernel {
 }  // namespace
 
 void M4D_MOTION_KERNEL_NAME(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
-                            GaussianSet* set) {
-  const size_t n = set->size();
-  if (n == 0) return;
+                            GaussianSet* set, size_t begin, size_t end) {
+  if (begin >= end) return;
   MotionKernel kernel(config, grid, mlp, set);
   // Gaussians outside the box stay unchanged (spec 6.3 step 1); the others are packed into
   // full blocks so that no lanes are spent on them.
   const float* positions = set->positions.data();
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = begin; i < end; ++i) {
     const float* p = positions + 3 * i;
     float u[3];
     bool inside = true;

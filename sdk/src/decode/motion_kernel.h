@@ -14,11 +14,12 @@
 
 namespace m4d {
 
+// Each moves Gaussians [begin, end) of *set; the others are left untouched.
 void ApplyMotionBaseline(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
-                         GaussianSet* set);
+                         GaussianSet* set, size_t begin, size_t end);
 // Only in x86-64 builds with M4D_HAVE_AVX512_KERNEL; only on CPUs with AVX-512 F/VL/DQ/BW.
 void ApplyMotionAvx512(const GridConfig& config, const MotionGrid& grid, const MlpWeights& mlp,
-                       GaussianSet* set);
+                       GaussianSet* set, size_t begin, size_t end);
 
 }  // namespace m4d
 
