@@ -1,0 +1,254 @@
+// m4d_probe: what a stream holds, as ffprobe shows it for video: the stream's configuration
+// (bitstream version, frame rate, SH degree, declared frames), then per GOP and per frame the
+// packets with their types and sizes, the decoded Gaussians per layer and the frame hash, and
+// every error with its byte offset. A table, or JSON with --json. Reads the stream as a player
+// does (bitstream-spec 3: resynchronise after damage); exits 1 when anything was damaged or
+// the stream holds no frame.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "m4d/m4d.h"
+
+namespace {
+
+const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
+                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE"};
+
+const char* TypeName(uint32_t type) {
+  return type <= M4D_PACKET_STATIC_UPDATE ? kTypeNames[type] : "unknown";
+}
+
+struct PacketRow {
+  size_t offset = 0;
+  uint32_t type = 0;
+  size_t size = 0;
+};
+
+struct FrameRow {
+  uint32_t index = 0;
+  bool keyframe = false;
+  bool random_access = false;  // its packets include a SEQUENCE_HEADER
+  std::vector<PacketRow> packets;
+  uint32_t static_count = 0, dynamic_count = 0;
+  std::string hash;
+  size_t bytes() const {
+    size_t total = 0;
+    for (const PacketRow& p : packets) total += p.size;
+    return total;
+  }
+};
+
+struct ErrorRow {
+  size_t offset = 0;
+  int code = 0;
+  std::string message;
+};
+
+struct Probe {
+  std::vector<FrameRow> frames;
+  std::vector<ErrorRow> errors;
+  std::vector<PacketRow> pending;  // packets of the frame being decoded
+  M4dStreamInfo info{};
+  bool configured = false;
+};
+
+std::string Hex(const uint8_t md5[16]) {
+  char text[33];
+  for (int i = 0; i < 16; ++i) std::snprintf(text + 2 * i, 3, "%02x", md5[i]);
+  return text;
+}
+
+void TakeFrames(M4dContext* ctx, Probe* probe) {
+  M4dFrame frame;
+  while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+    FrameRow row;
+    row.index = frame.frame_index;
+    row.keyframe = frame.is_keyframe != 0;
+    row.packets.swap(probe->pending);
+    for (const PacketRow& p : row.packets) {
+      row.random_access = row.random_access || p.type == M4D_PACKET_SEQUENCE_HEADER;
+    }
+    row.static_count = frame.static_layer.count;
+    row.dynamic_count = frame.dynamic_layer.count;
+    uint8_t md5[16];
+    if (m4d_frame_hash(&frame, md5) == M4D_OK) row.hash = Hex(md5);
+    probe->frames.push_back(std::move(row));
+    m4d_frame_unref(&frame);
+  }
+}
+
+// The offset of the next packet header at or after `from`, or the end.
+size_t Resync(const std::vector<uint8_t>& data, size_t from) {
+  size_t offset = 0;
+  M4dPacketInfo info;
+  const int r = m4d_find_packet(data.data() + from, data.size() - from, &offset, &info);
+  return (r == M4D_OK || info.packet_size > 0) ? from + offset : data.size();
+}
+
+void Run(const std::vector<uint8_t>& data, Probe* probe) {
+  M4dSettings settings;
+  m4d_default_settings(&settings);
+  M4dContext* ctx = nullptr;
+  if (m4d_open(&ctx, &settings) != M4D_OK) {
+    probe->errors.push_back({0, M4D_ERR_NOMEM, "cannot open a decoder"});
+    return;
+  }
+  size_t pos = 0;
+  while (pos < data.size()) {
+    M4dPacketInfo info;
+    int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
+    if (r == M4D_ERR_AGAIN) {
+      probe->errors.push_back({pos, M4D_ERR_BITSTREAM, "the stream ends inside a packet"});
+      break;
+    }
+    if (r < 0) {
+      probe->errors.push_back({pos, r, "damaged packet header; resynchronising"});
+      m4d_flush(ctx);
+      probe->pending.clear();
+      pos = Resync(data, pos + 1);
+      continue;
+    }
+    probe->pending.push_back({pos, info.type, info.packet_size});
+    r = m4d_send_packet(ctx, &data[pos], info.packet_size);
+    if (r == M4D_ERR_AGAIN) {
+      TakeFrames(ctx, probe);
+      r = m4d_send_packet(ctx, &data[pos], info.packet_size);
+    }
+    TakeFrames(ctx, probe);
+    if (r < 0) {
+      probe->errors.push_back({pos, r, m4d_last_error(ctx)});
+      probe->pending.clear();
+      pos = Resync(data, pos + 24);
+      continue;
+    }
+    pos += info.packet_size;
+  }
+  if (!probe->pending.empty()) {
+    probe->errors.push_back({data.size(), M4D_ERR_BITSTREAM, "the stream ends inside a frame"});
+  }
+  probe->configured = m4d_get_stream_info(ctx, &probe->info) == M4D_OK;
+  m4d_close(&ctx);
+}
+
+// GOPs as (first frame row, end row): a GOP starts at each keyframe.
+std::vector<std::pair<size_t, size_t>> Gops(const Probe& probe) {
+  std::vector<std::pair<size_t, size_t>> gops;
+  for (size_t i = 0; i < probe.frames.size(); ++i) {
+    if (probe.frames[i].keyframe || gops.empty()) gops.emplace_back(i, i);
+    gops.back().second = i + 1;
+  }
+  return gops;
+}
+
+void PrintTable(const std::string& path, size_t size, const Probe& probe) {
+  const M4dStreamInfo& s = probe.info;
+  std::printf("%s: %zu bytes", path.c_str(), size);
+  if (probe.configured) {
+    std::printf(", bitstream %u.%u, %u/%u fps, SH degree %u, %u frames declared", s.bitstream_major,
+                s.bitstream_minor, s.fps_num, s.fps_den, s.sh_degree, s.num_frames);
+  }
+  std::printf("\n");
+  for (const auto& [first, end] : Gops(probe)) {
+    size_t bytes = 0;
+    for (size_t i = first; i < end; ++i) bytes += probe.frames[i].bytes();
+    const FrameRow& key = probe.frames[first];
+    std::printf("\nGOP at frame %u (%s), %zu frames, %.2f KB\n", key.index,
+                key.random_access ? "random access" : (key.keyframe ? "dependent" : "no keyframe"),
+                end - first, bytes / 1000.0);
+    std::printf("%6s %5s %9s %9s %10s  %-32s %s\n", "frame", "type", "static", "dynamic", "bytes",
+                "hash", "packets (bytes)");
+    for (size_t i = first; i < end; ++i) {
+      const FrameRow& f = probe.frames[i];
+      std::string packets;
+      for (const PacketRow& p : f.packets) {
+        packets += (packets.empty() ? "" : ", ") + std::string(TypeName(p.type)) + " " +
+                   std::to_string(p.size);
+      }
+      std::printf("%6u %5s %9u %9u %10zu  %-32s %s\n", f.index,
+                  f.keyframe ? (f.random_access ? "key" : "dkey") : "inter", f.static_count,
+                  f.dynamic_count, f.bytes(), f.hash.c_str(), packets.c_str());
+    }
+  }
+  std::printf("\n%zu frames, %zu errors\n", probe.frames.size(), probe.errors.size());
+  for (const ErrorRow& e : probe.errors) {
+    std::printf("  byte %zu: error %d (%s): %s\n", e.offset, e.code, m4d_error_string(e.code),
+                e.message.c_str());
+  }
+}
+
+nlohmann::json ToJson(const std::string& path, size_t size, const Probe& probe) {
+  using nlohmann::json;
+  json stream = {{"file", path}, {"bytes", size}};
+  if (probe.configured) {
+    const M4dStreamInfo& s = probe.info;
+    stream["bitstream_version"] =
+        std::to_string(s.bitstream_major) + "." + std::to_string(s.bitstream_minor);
+    stream["fps_num"] = s.fps_num;
+    stream["fps_den"] = s.fps_den;
+    stream["sh_degree"] = s.sh_degree;
+    stream["num_frames_declared"] = s.num_frames;
+  }
+  json frames = json::array();
+  for (const FrameRow& f : probe.frames) {
+    json packets = json::array();
+    for (const PacketRow& p : f.packets) {
+      packets.push_back({{"offset", p.offset}, {"type", TypeName(p.type)}, {"bytes", p.size}});
+    }
+    frames.push_back({{"frame", f.index},
+                      {"keyframe", f.keyframe},
+                      {"random_access", f.random_access},
+                      {"static_gaussians", f.static_count},
+                      {"dynamic_gaussians", f.dynamic_count},
+                      {"bytes", f.bytes()},
+                      {"hash", f.hash},
+                      {"packets", packets}});
+  }
+  json gops = json::array();
+  for (const auto& [first, end] : Gops(probe)) {
+    size_t bytes = 0;
+    for (size_t i = first; i < end; ++i) bytes += probe.frames[i].bytes();
+    gops.push_back({{"first_frame", probe.frames[first].index},
+                    {"frames", end - first},
+                    {"random_access", probe.frames[first].random_access},
+                    {"bytes", bytes}});
+  }
+  json errors = json::array();
+  for (const ErrorRow& e : probe.errors) {
+    errors.push_back({{"offset", e.offset},
+                      {"code", e.code},
+                      {"error", m4d_error_string(e.code)},
+                      {"message", e.message}});
+  }
+  return {{"stream", stream}, {"gops", gops}, {"frames", frames}, {"errors", errors}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input;
+  bool json = false;
+  CLI::App app{"Show what an M4D stream holds: configuration, GOPs, frames, packets, errors."};
+  app.add_option("stream", input, "stream file")->required()->check(CLI::ExistingFile);
+  app.add_flag("--json", json, "JSON instead of the table");
+  CLI11_PARSE(app, argc, argv);
+  std::ifstream file(input, std::ios::binary);
+  const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
+                                  std::istreambuf_iterator<char>());
+  if (!file.good() && !file.eof()) {
+    std::fprintf(stderr, "m4d_probe: cannot read %s\n", input.c_str());
+    return 2;
+  }
+  Probe probe;
+  Run(data, &probe);
+  if (json) {
+    std::printf("%s\n", ToJson(input, data.size(), probe).dump(2).c_str());
+  } else {
+    PrintTable(input, data.size(), probe);
+  }
+  return probe.errors.empty() && !probe.frames.empty() ? 0 : 1;
+}
