@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "m4d/m4d.h"
+#include "usage_exit.h"
 
 namespace {
 
@@ -93,7 +94,7 @@ int main(int argc, char** argv) {
   std::string input;
   CLI::App app{"Check that a stream conforms to the M4D specification (for encoder output)."};
   app.add_option("stream", input, "stream file")->required()->check(CLI::ExistingFile);
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
   std::ifstream file(input, std::ios::binary);
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
                                   std::istreambuf_iterator<char>());

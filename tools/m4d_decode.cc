@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "m4d/m4d.h"
+#include "usage_exit.h"
 
 namespace {
 
@@ -69,7 +70,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", opt.threads, "decoder threads (0: every core); output is the same")
       ->check(CLI::Range(0, 256));
   app.add_flag("-q,--quiet", opt.quiet, "no summary on stderr");
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
 
   std::ifstream file(opt.input, std::ios::binary);
   std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
@@ -133,7 +134,8 @@ int main(int argc, char** argv) {
   while (pos < data.size()) {
     int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
     if (r == M4D_ERR_AGAIN) {
-      ReportError(pos, r, "the stream ends inside a packet");
+      std::fprintf(stderr, "m4d_decode: byte %zu: truncated: the stream ends inside a packet\n",
+                   pos);
       ++errors;
       break;
     }
@@ -174,6 +176,7 @@ int main(int argc, char** argv) {
                  opt.start_gop, gop + 1);
     return 1;
   }
+  if (frames == 0) std::fprintf(stderr, "m4d_decode: no frame decoded\n");
   if (!opt.quiet) {
     std::fprintf(stderr, "m4d_decode: %d frames, %d packet errors, %zu bytes skipped, %.1f ms\n",
                  frames, errors, skipped, decode_ms);
@@ -185,5 +188,5 @@ int main(int argc, char** argv) {
                    stream.sh_degree, stream.gops, stream.random_access_gops, stream.num_frames);
     }
   }
-  return (errors > 0 || skipped > 0) ? 1 : 0;
+  return (errors > 0 || skipped > 0 || frames == 0) ? 1 : 0;
 }

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.h"
 #include "m4d/m4d.h"
-
-namespace {}  // namespace
+#include "usage_exit.h"
 
 int main(int argc, char** argv) {
   std::string input, output;
@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
       "removed)."};
   app.add_option("input", input, "stream to read")->required()->check(CLI::ExistingFile);
   app.add_option("output", output, "foreground-only stream to write")->required();
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
 
   std::ifstream in(input, std::ios::binary);
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),
@@ -31,8 +31,9 @@ int main(int argc, char** argv) {
     M4dPacketInfo info;
     const int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
     if (r != M4D_OK) {
-      std::fprintf(stderr, "m4d_filter: %s: byte %zu: %s\n", input.c_str(), pos,
-                   m4d_error_string(r));
+      std::fprintf(
+          stderr, "m4d_filter: %s: byte %zu: %s\n", input.c_str(), pos,
+          r == M4D_ERR_AGAIN ? "the stream ends inside a packet (truncated)" : m4d_error_string(r));
       return 1;
     }
     if (info.type != M4D_PACKET_KEYFRAME_STATIC && info.type != M4D_PACKET_STATIC_UPDATE) {
@@ -44,10 +45,13 @@ int main(int argc, char** argv) {
     ++packets;
     pos += info.packet_size;
   }
-  std::ofstream out(output, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(kept.data()), static_cast<std::streamsize>(kept.size()));
-  if (!out) {
-    std::fprintf(stderr, "m4d_filter: cannot write %s\n", output.c_str());
+  if (packets == 0) {
+    std::fprintf(stderr, "m4d_filter: %s holds no packet\n", input.c_str());
+    return 1;
+  }
+  const m4d::Status written = m4d::WriteFileAtomically(output, kept.data(), kept.size());
+  if (!written.ok()) {
+    std::fprintf(stderr, "m4d_filter: %s\n", written.message().c_str());
     return 1;
   }
   std::printf("%s: %zu of %zu packets kept (%zu bytes)\n", output.c_str(), packets - dropped,

@@ -17,6 +17,7 @@
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
+#include "usage_exit.h"
 
 namespace {
 
@@ -281,7 +282,7 @@ int main(int argc, char** argv) {
   std::string dir = "conformance/invalid";
   CLI::App app{"Write the invalid conformance streams and their expected errors."};
   app.add_option("-o,--output-dir", dir, "where to write them")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
   Stream base;
   if (!MakeBase(&base)) return 1;
   std::ofstream expected(dir + "/EXPECTED");

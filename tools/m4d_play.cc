@@ -25,6 +25,7 @@
 #include "m4d/m4d.h"
 #include "m4d/m4d_render.h"
 #include "ply/gaussian_ply.h"
+#include "usage_exit.h"
 #include "video/video_writer.h"
 
 namespace {
@@ -308,7 +309,10 @@ class Player {
     std::string error;
     std::vector<std::vector<uint8_t>> packets;
     if (!ReadPackets(o.stream, &packets, &error)) return Fail(error);
-    if (!error.empty()) std::fprintf(stderr, "m4d_play: %s\n", error.c_str());
+    // Damage is reported and played through (the decoder resumes at the next GOP), and the
+    // exit status says it happened.
+    bool damaged = !error.empty();
+    if (damaged) std::fprintf(stderr, "m4d_play: %s\n", error.c_str());
     options_ = o;
     if (!path_.Init(o, &error)) return Fail(error);
     if (!OpenDecoder(o, &error) || !OpenRenderer(o, &error)) return Fail(error);
@@ -323,11 +327,14 @@ class Player {
       }
       if (r < 0 && r != M4D_ERR_AGAIN) {
         std::fprintf(stderr, "m4d_play: packet rejected: %s\n", m4d_last_error(decoder_));
+        damaged = true;
       }
       if (!TakeFrames(&start, &error)) return Fail(error);
       if (Done()) break;
     }
-    return Finish(&error) ? 0 : Fail(error);
+    if (!Finish(&error)) return Fail(error);
+    if (totals_.frames == 0) return Fail("no frame decoded");
+    return damaged ? 1 : 0;
   }
 
   ~Player() {
@@ -530,7 +537,7 @@ int main(int argc, char** argv) {
   app.add_option("--sh-degree", o.sh_degree, "largest SH degree evaluated")
       ->check(CLI::Range(0, 3))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
   if (o.png_dir.empty() && o.mp4.empty()) {
     std::fprintf(stderr, "m4d_play: nothing to write: give --png-dir and/or --mp4\n");
     return 2;

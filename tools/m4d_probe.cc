@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "m4d/m4d.h"
+#include "usage_exit.h"
 
 namespace {
 
@@ -235,7 +236,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Show what an M4D stream holds: configuration, GOPs, frames, packets, errors."};
   app.add_option("stream", input, "stream file")->required()->check(CLI::ExistingFile);
   app.add_flag("--json", json, "JSON instead of the table");
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
   std::ifstream file(input, std::ios::binary);
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
                                   std::istreambuf_iterator<char>());

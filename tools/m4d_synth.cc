@@ -16,6 +16,7 @@
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
+#include "usage_exit.h"
 
 namespace {
 
@@ -218,7 +219,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
 
   std::vector<uint8_t> bytes;
   std::vector<std::string> hashes;

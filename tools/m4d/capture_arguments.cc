@@ -7,6 +7,7 @@
 #include "dataset/capture_check.h"
 #include "dataset/capture_loader.h"
 #include "synthetic_scene/scene_writer.h"
+#include "train/progress_bar.h"
 
 namespace m4d {
 namespace {
@@ -86,8 +87,8 @@ Status OpenCapture(const CaptureArguments& args, Capture* capture) {
       std::fprintf(stderr, "generating the %s scene into %s\n", args.dataset.c_str(), path.c_str());
       const auto start = std::chrono::steady_clock::now();
       M4D_RETURN_IF_ERROR(WriteSyntheticScene(scene, path, [](int done, int count) {
-        std::fprintf(stderr, "\r  frame %d/%d", done, count);
-        if (done == count) std::fprintf(stderr, "\n");
+        ShowStatus(stderr, "  frame " + std::to_string(done) + "/" + std::to_string(count));
+        if (done == count) ClearStatus(stderr);
       }));
       std::fprintf(stderr, "  done in %.1f s\n",
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

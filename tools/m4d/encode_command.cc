@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_status.h"
+#include "io/atomic_file.h"
 #include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
@@ -311,9 +312,16 @@ Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOp
   return Status::Ok();
 }
 
+std::string ReportPath(const EncodeArguments& args) {
+  return args.json.empty() ? args.output + ".json" : args.json;
+}
+
 Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   EncoderOptions options;
   M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
+  // Hours of encoding must not end in a path that cannot be written.
+  M4D_RETURN_IF_ERROR(CheckOutputPath(args.output));
+  M4D_RETURN_IF_ERROR(CheckOutputPath(ReportPath(args)));
   uint32_t unused_num, unused_den;
   if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
   Capture capture;
@@ -326,16 +334,14 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   EncoderCallbacks callbacks;
   callbacks.training = [&](const std::string& stage, int frame, const TrainingProgress& p) {
     if (p.iteration == 0) return;
-    std::fprintf(stderr, "\r%s %d ", stage.c_str(), frame);
-    bar.Update(p);
+    bar.Update(p, stage + " " + std::to_string(frame));
     if (p.iteration == p.iterations) bar.Finish();
   };
   callbacks.stage = [](const std::string& stage, int frame) {
-    std::fprintf(stderr, "\r  frame %d: %-14s", frame, stage.c_str());
-    std::fflush(stderr);
+    ShowStatus(stderr, "  frame " + std::to_string(frame) + ": " + stage);
   };
   callbacks.frame_coded = [&](const FrameReport& f) {
-    std::fprintf(stderr, "\r%40s\r", "");
+    ClearStatus(stderr);
     PrintFrameLine(stdout, f, header);
     header = false;
   };
@@ -375,14 +381,9 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
                 views_video->codec_name().c_str());
   }
 
-  std::error_code ec;
-  const std::filesystem::path parent = std::filesystem::path(args.output).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  std::ofstream file(args.output, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(encoder.stream().data()),
-             static_cast<std::streamsize>(encoder.stream().size()));
-  if (!file) return Status(M4D_ERR_INVALID_ARG, "cannot write " + args.output);
-  const std::string json_path = args.json.empty() ? args.output + ".json" : args.json;
+  M4D_RETURN_IF_ERROR(
+      WriteFileAtomically(args.output, encoder.stream().data(), encoder.stream().size()));
+  const std::string json_path = ReportPath(args);
   const nlohmann::json extra = {{"options", EncodeOptionsJson(args)}};
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
   M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));

@@ -12,6 +12,7 @@
 #include "rd_command.h"
 #include "scene_command.h"
 #include "train_command.h"
+#include "usage_exit.h"
 
 int main(int argc, char** argv) {
   // Tables on stdout and progress on stderr interleave in order even when both go to a file.
@@ -26,6 +27,6 @@ int main(int argc, char** argv) {
   m4d::AddRdCommand(&app, &exit_code);
   m4d::AddAblateCommand(&app, &exit_code);
   m4d::AddBenchCommand(&app, &exit_code);
-  CLI11_PARSE(app, argc, argv);
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
   return exit_code;
 }

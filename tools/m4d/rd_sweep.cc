@@ -58,8 +58,7 @@ Status TrainToPly(const Capture& capture, int frame, const EncodeArguments& args
       capture, frame, o,
       [&](const TrainingProgress& p) {
         if (p.iteration == 0) return;
-        std::fprintf(stderr, "\rkeyframe %d ", frame);
-        bar.Update(p);
+        bar.Update(p, "keyframe " + std::to_string(frame));
         if (p.iteration == p.iterations) bar.Finish();
       },
       &model));

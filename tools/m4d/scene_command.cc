@@ -7,6 +7,7 @@
 
 #include "command_status.h"
 #include "synthetic_scene/scene_writer.h"
+#include "train/progress_bar.h"
 
 namespace m4d {
 namespace {
@@ -77,8 +78,8 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
     }
     const auto start = std::chrono::steady_clock::now();
     Status status = WriteSyntheticScene(args->scene, args->output, [](int done, int count) {
-      std::fprintf(stderr, "\rrendering frame %d/%d", done, count);
-      if (done == count) std::fprintf(stderr, "\n");
+      ShowStatus(stderr, "rendering frame " + std::to_string(done) + "/" + std::to_string(count));
+      if (done == count) ClearStatus(stderr);
     });
     if (status.ok()) {
       std::printf("scene written to %s in %.1f s\n", args->output.c_str(),

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.h"
+
 namespace m4d {
 namespace {
 
@@ -155,13 +157,9 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
     json extra = json::parse(extra_json_object, nullptr, false);
     if (extra.is_object()) doc.update(extra);
   }
-  std::error_code ec;
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  std::ofstream file(path);
-  file << doc.dump(2) << "\n";
-  if (!file) return Status(M4D_ERR_INVALID_ARG, "cannot write " + path);
-  return Status::Ok();
+  M4D_RETURN_IF_ERROR(CheckOutputPath(path));  // creates its directory
+  const std::string text = doc.dump(2) + "\n";
+  return WriteFileAtomically(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
 }
 
 }  // namespace m4d

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <memory>
 
+#include "io/atomic_file.h"
+
 namespace m4d {
 namespace {
 
@@ -29,7 +31,7 @@ Status ReadFileBytes(const std::string& path, size_t max_bytes, std::vector<uint
   while (true) {
     const size_t old_size = bytes->size();
     // One byte past the limit is enough to tell that the file is too large.
-    const size_t want = std::min(kChunk, max_bytes + 1 - old_size);
+    const size_t want = std::min(kChunk, max_bytes - old_size + (max_bytes < SIZE_MAX));
     bytes->resize(old_size + want);
     const size_t got = std::fread(bytes->data() + old_size, 1, want, file.get());
     bytes->resize(old_size + got);
@@ -52,15 +54,7 @@ Status DecodeImageFile(const std::string& path, ImageDecoder decode, Image* imag
 }
 
 Status WriteFileBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  errno = 0;
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) return IoError("create", path);
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-    return IoError("write", path);
-  }
-  // fclose flushes; a full disk may only show here.
-  if (std::fclose(file.release()) != 0) return IoError("write", path);
-  return Status::Ok();
+  return WriteFileAtomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace m4d

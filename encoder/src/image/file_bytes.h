@@ -22,7 +22,8 @@ Status ReadFileBytes(const std::string& path, size_t max_bytes, std::vector<uint
 using ImageDecoder = Status (*)(const uint8_t* data, size_t size, Image* image);
 Status DecodeImageFile(const std::string& path, ImageDecoder decode, Image* image);
 
-// Creates or replaces the file. M4D_ERR_INVALID_ARG when it cannot be written.
+// Creates or replaces the file, atomically (io/atomic_file.h). M4D_ERR_INVALID_ARG when it
+// cannot be written.
 Status WriteFileBytes(const std::string& path, const std::vector<uint8_t>& bytes);
 
 }  // namespace m4d

@@ -1,5 +1,7 @@
 #include "train/progress_bar.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 
 namespace m4d {
@@ -15,16 +17,45 @@ std::string FormatProgress(const TrainingProgress& p) {
   return line + text;
 }
 
-void ProgressBar::Update(const TrainingProgress& progress) {
-  // Trailing spaces clear what a longer previous line left.
-  std::fprintf(stream_, "\r%s   ", FormatProgress(progress).c_str());
+bool IsTerminal(std::FILE* stream) { return isatty(fileno(stream)) == 1; }
+
+void ShowStatus(std::FILE* stream, const std::string& text) {
+  if (IsTerminal(stream)) {
+    std::fprintf(stream, "\r%-40s", text.c_str());
+  } else {
+    std::fprintf(stream, "%s\n", text.c_str());
+  }
+  std::fflush(stream);
+}
+
+void ClearStatus(std::FILE* stream) {
+  if (IsTerminal(stream)) std::fprintf(stream, "\r%40s\r", "");
+}
+
+ProgressBar::ProgressBar(std::FILE* stream) : stream_(stream), terminal_(IsTerminal(stream)) {}
+
+void ProgressBar::Update(const TrainingProgress& progress, const std::string& label) {
+  const std::string prefix = label.empty() ? "" : label + " ";
+  if (terminal_) {
+    // Trailing spaces clear what a longer previous line left.
+    std::fprintf(stream_, "\r%s%s   ", prefix.c_str(), FormatProgress(progress).c_str());
+    written_ = true;
+  } else {
+    const int tenths = progress.iterations > 0 ? 10 * progress.iteration / progress.iterations : 10;
+    if (progress.iteration < last_iteration_) logged_tenths_ = -1;  // a new run
+    last_iteration_ = progress.iteration;
+    if (tenths <= logged_tenths_) return;
+    logged_tenths_ = tenths;
+    std::fprintf(stream_, "%s%s\n", prefix.c_str(), FormatProgress(progress).c_str());
+  }
   std::fflush(stream_);
-  written_ = true;
 }
 
 void ProgressBar::Finish() {
   if (written_) std::fputc('\n', stream_);
   written_ = false;
+  logged_tenths_ = -1;
+  last_iteration_ = 0;
 }
 
 }  // namespace m4d

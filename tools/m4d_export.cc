@@ -1,0 +1,134 @@
+// m4d_export: decoded frames of an M4D stream as files other tools open: the 3DGS PLY layout
+// of the reference implementation (SuperSplat and the reference viewers read it), or binary
+// glTF with KHR_gaussian_splatting. Each file holds one frame's Gaussians, static layer first.
+//
+//   m4d_export STREAM -o DIR [--frames FIRST[:LAST]] [--layers all|static|dynamic]
+//              [--format ply|glb]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "export/frame_gaussians.h"
+#include "export/gltf_splat_writer.h"
+#include "image/file_bytes.h"
+#include "io/atomic_file.h"
+#include "m4d/m4d.h"
+#include "ply/gaussian_ply.h"
+#include "usage_exit.h"
+
+namespace {
+
+struct Options {
+  std::string input, output_dir, frames, layers = "all", format = "ply";
+  uint32_t first = 0, last = UINT32_MAX;
+};
+
+bool ParseFrames(Options* o) {
+  if (o->frames.empty()) return true;
+  const size_t colon = o->frames.find(':');
+  try {
+    o->first = static_cast<uint32_t>(std::stoul(o->frames.substr(0, colon)));
+    o->last = colon == std::string::npos ? o->first
+              : colon + 1 == o->frames.size()
+                  ? UINT32_MAX
+                  : static_cast<uint32_t>(std::stoul(o->frames.substr(colon + 1)));
+  } catch (const std::exception&) {
+    return false;
+  }
+  return o->first <= o->last;
+}
+
+// Writes one decoded frame; false (with a message) on failure.
+bool Export(const Options& o, const M4dFrame& frame, int* written) {
+  if (frame.frame_index < o.first || frame.frame_index > o.last) return true;
+  const uint32_t layers = o.layers == "static"    ? M4D_LAYER_STATIC
+                          : o.layers == "dynamic" ? M4D_LAYER_DYNAMIC
+                                                  : M4D_LAYER_ALL;
+  m4d::GaussianSet set;
+  m4d::Status status = m4d::GaussianSetFromFrame(frame, layers, &set);
+  char name[32];
+  std::snprintf(name, sizeof(name), "/frame_%05u.%s", frame.frame_index, o.format.c_str());
+  const std::string path = o.output_dir + name;
+  if (status.ok()) {
+    status =
+        o.format == "glb" ? m4d::WriteGaussianGlb(path, set) : m4d::WriteGaussianPly(path, set);
+  }
+  if (!status.ok()) {
+    std::fprintf(stderr, "m4d_export: frame %u: %s\n", frame.frame_index, status.message().c_str());
+    return false;
+  }
+  std::printf("%s: %zu Gaussians\n", path.c_str(), set.size());
+  ++*written;
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{
+      "Export decoded frames of an M4D stream as 3DGS PLY or glTF (KHR_gaussian_splatting)."};
+  app.add_option("stream", o.input, "stream file")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--output-dir", o.output_dir, "directory for frame_<index>.ply or .glb")
+      ->required();
+  app.add_option("--frames", o.frames, "FIRST, FIRST:LAST or FIRST: (default: every frame)");
+  app.add_option("--layers", o.layers, "layers in each file")
+      ->check(CLI::IsMember({"all", "static", "dynamic"}))
+      ->capture_default_str();
+  app.add_option("--format", o.format, "ply: the 3DGS PLY layout; glb: binary glTF")
+      ->check(CLI::IsMember({"ply", "glb"}))
+      ->capture_default_str();
+  M4D_PARSE_ARGUMENTS(app, argc, argv);
+  if (!ParseFrames(&o)) {
+    std::fprintf(stderr, "m4d_export: --frames %s is not FIRST, FIRST:LAST or FIRST:\n",
+                 o.frames.c_str());
+    return 2;
+  }
+  std::vector<uint8_t> data;
+  m4d::Status status = m4d::CheckOutputPath(o.output_dir + "/frame_00000." + o.format);
+  if (status.ok()) status = m4d::ReadFileBytes(o.input, SIZE_MAX / 2, &data);
+  if (!status.ok()) {
+    std::fprintf(stderr, "m4d_export: %s\n", status.message().c_str());
+    return 2;
+  }
+  M4dSettings settings;
+  m4d_default_settings(&settings);
+  M4dContext* ctx = nullptr;
+  if (m4d_open(&ctx, &settings) != M4D_OK) return 2;
+  int written = 0, errors = 0;
+  bool ok = true;
+  auto drain = [&]() {
+    M4dFrame frame;
+    while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+      ok = Export(o, frame, &written) && ok;
+      m4d_frame_unref(&frame);
+    }
+  };
+  size_t pos = 0;
+  while (ok && pos < data.size()) {
+    size_t skip = 0;
+    M4dPacketInfo info;
+    if (m4d_find_packet(data.data() + pos, data.size() - pos, &skip, &info) != M4D_OK) {
+      std::fprintf(stderr, "m4d_export: the stream ends inside a packet at byte %zu\n", pos);
+      ++errors;
+      break;
+    }
+    if (skip > 0) m4d_flush(ctx), ++errors;
+    pos += skip;
+    int r = m4d_send_packet(ctx, data.data() + pos, info.packet_size);
+    if (r == M4D_ERR_AGAIN) drain(), r = m4d_send_packet(ctx, data.data() + pos, info.packet_size);
+    if (r < 0) {
+      std::fprintf(stderr, "m4d_export: byte %zu: %s\n", pos, m4d_last_error(ctx));
+      ++errors;
+    }
+    drain();
+    pos += info.packet_size;
+  }
+  m4d_close(&ctx);
+  if (ok && written == 0) {
+    std::fprintf(stderr, "m4d_export: no frame of %s in %s\n",
+                 o.frames.empty() ? "any index" : o.frames.c_str(), o.input.c_str());
+  }
+  return ok && written > 0 && errors == 0 ? 0 : 1;
+}
