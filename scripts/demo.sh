@@ -14,7 +14,7 @@ m4d=build/release/tools/m4d/m4d
 # The demo codes the scene's first 8 frames with a 1000-iteration first keyframe, so that
 # everything, build included, takes well under a quarter of an hour on two cores;
 # `m4d encode default` alone codes all 20 frames with the full short schedule (7000 iterations).
-"$m4d" encode default -o out/default.m4d -y --frames 8 --keyframe-iterations 1000 \
+"$m4d" encode default -o out/default.m4d --force --frames 8 --keyframe-iterations 1000 \
   --views out/default-views "$@"
 build/release/tools/m4d_decode out/default.m4d -o out/default.md5
 # The player's view: the SDK decodes and renders the held-out camera with OpenGL ES (headless).

@@ -53,7 +53,7 @@ for entry in "${encoded[@]}"; do
   args=${entry#*|}
   echo "== $name"
   # shellcheck disable=SC2086
-  "$bin/m4d/m4d" encode "$scene" -o "$out/$name.m4d" -y --views "" $short $args | tail -9
+  "$bin/m4d/m4d" encode "$scene" -o "$out/$name.m4d" --force --views "" $short $args | tail -9
   rm -f "$out/$name.m4d.json"
   record "$name"
 done

@@ -2,8 +2,10 @@
 // "<frame_index> <md5>", the normative frame hash (bitstream-spec section 7). This is the
 // command-line contract the conformance runner uses to check a decoder.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -76,12 +78,14 @@ int main(int argc, char** argv) {
   std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
                             std::istreambuf_iterator<char>());
   if (!file.good() && !file.eof()) {
-    std::fprintf(stderr, "m4d_decode: cannot read %s\n", opt.input.c_str());
+    std::fprintf(stderr, "m4d_decode: cannot read %s: %s\n", opt.input.c_str(),
+                 std::strerror(errno));
     return 2;
   }
   FILE* out = stdout;
   if (!opt.output.empty() && !(out = std::fopen(opt.output.c_str(), "w"))) {
-    std::fprintf(stderr, "m4d_decode: cannot write %s\n", opt.output.c_str());
+    std::fprintf(stderr, "m4d_decode: cannot write %s: %s\n", opt.output.c_str(),
+                 std::strerror(errno));
     return 2;
   }
 
@@ -170,7 +174,7 @@ int main(int argc, char** argv) {
   const bool configured = m4d_get_stream_info(ctx, &stream) == M4D_OK;
   m4d_close(&ctx);
   if (out != stdout) std::fclose(out);
-  if (opt.start_frame < 0 && gop < opt.start_gop) {
+  if (opt.start_gop > 0 && gop < opt.start_gop) {
     std::fprintf(stderr,
                  "m4d_decode: cannot start at GOP %d: the stream has %d random-access GOPs\n",
                  opt.start_gop, gop + 1);

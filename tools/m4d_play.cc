@@ -9,9 +9,11 @@
 // Gaussian PLY or by another stream's first static layer.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -232,7 +234,7 @@ class CameraPath {
   bool InitPoses(const Options& o, std::string* error) {
     std::ifstream file(o.poses);
     if (!file) {
-      *error = "cannot read " + o.poses;
+      *error = "cannot read " + o.poses + ": " + std::strerror(errno);
       return false;
     }
     std::string line;

@@ -5,7 +5,9 @@
 // does (bitstream-spec 3: resynchronise after damage); exits 1 when anything was damaged or
 // the stream holds no frame.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -241,7 +243,7 @@ int main(int argc, char** argv) {
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
                                   std::istreambuf_iterator<char>());
   if (!file.good() && !file.eof()) {
-    std::fprintf(stderr, "m4d_probe: cannot read %s\n", input.c_str());
+    std::fprintf(stderr, "m4d_probe: cannot read %s: %s\n", input.c_str(), std::strerror(errno));
     return 2;
   }
   Probe probe;

@@ -407,13 +407,13 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
                   "write the held-out view, its decoded render and their difference (x4), one PNG "
                   "per frame and views.mp4 of them all, here");
   auto overwrite = std::make_shared<bool>(false);
-  cmd->add_flag("-y,--overwrite", *overwrite, "replace an existing stream (else refused)");
+  cmd->add_flag("-f,--force", *overwrite, "replace an existing stream (else refused)");
   cmd->callback([args, overwrite, exit_code]() {
     std::error_code ec;
     if (!*overwrite && std::filesystem::is_regular_file(args->output, ec)) {
       *exit_code = ReportStatus(
           "encode", Status(M4D_ERR_INVALID_ARG,
-                           args->output + " exists: give -y to replace it, or another -o"));
+                           args->output + " exists: give --force to replace it, or another -o"));
       return;
     }
     SequenceReport report;

@@ -73,6 +73,10 @@ Status ReadPoint(const std::string& json_path, RdPoint* point) {
   const nlohmann::json doc = nlohmann::json::parse(file, nullptr, false);
   try {
     const nlohmann::json& s = doc.at("summary");
+    if (s.at("psnr").is_null()) {
+      return Status(M4D_ERR_INVALID_ARG,
+                    json_path + ": no held-out camera, and an RD curve needs one (--test-camera)");
+    }
     SequenceSummary& m = point->summary;
     m.frames = s.at("frames");
     m.keyframes = s.at("keyframes");

@@ -33,6 +33,7 @@ SequenceSummary Summarise(const SequenceReport& report) {
   double inter_seconds = 0;
   for (const FrameReport& f : report.frames) {
     ++s.frames;
+    s.held_out = s.held_out || f.held_out;
     s.psnr += f.psnr;
     s.ssim += f.ssim;
     s.seconds += f.seconds.total();
@@ -66,6 +67,14 @@ SequenceSummary Summarise(const SequenceReport& report) {
   return s;
 }
 
+// A held-out measure, or "-" without a held-out camera (not a 0.00 that reads as a result).
+std::string Measure(const FrameReport& f, double value, int decimals) {
+  if (!f.held_out) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
 void PrintFrameLine(std::FILE* out, const FrameReport& f, bool header) {
   if (header) {
     std::fprintf(out, "%5s %4s %9s %9s %7s %8s %8s %9s %8s %8s %6s %6s %7s %6s %7s %7s\n", "frame",
@@ -73,14 +82,14 @@ void PrintFrameLine(std::FILE* out, const FrameReport& f, bool header) {
                  "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "train", "time s");
   }
   std::fprintf(
-      out,
-      "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7.2f %6.4f %7.2f %7.1f\n",
+      out, "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7s %6s %7.2f %7.1f\n",
       f.frame_index, f.keyframe ? (f.random_access ? "key" : "dkey") : "inter",
       Kb(Layer(f, M4D_PACKET_KEYFRAME_STATIC) + Layer(f, M4D_PACKET_STATIC_UPDATE)),
       Kb(Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)), Kb(Layer(f, M4D_PACKET_MLP_WEIGHTS)),
       Kb(Layer(f, M4D_PACKET_MOTION_GRID)), Kb(Layer(f, M4D_PACKET_COMPENSATION)),
-      Kb(f.bytes.total()), f.static_count, f.dynamic_count, f.added, f.removed, f.psnr, f.ssim,
-      f.training_psnr, f.seconds.total());
+      Kb(f.bytes.total()), f.static_count, f.dynamic_count, f.added, f.removed,
+      Measure(f, f.psnr, 2).c_str(), Measure(f, f.ssim, 4).c_str(), f.training_psnr,
+      f.seconds.total());
   std::fflush(out);
 }
 
@@ -91,8 +100,12 @@ void PrintSummary(std::FILE* out, const SequenceReport& report) {
   std::fprintf(out, "%-34s %.2f KB\n", "per frame (keyframes included)", s.kb_per_frame);
   std::fprintf(out, "%-34s %.2f KB\n", "per inter frame", s.kb_per_inter_frame);
   std::fprintf(out, "%-34s %.2f KB\n", "per keyframe", s.kb_per_keyframe);
-  std::fprintf(out, "%-34s %.2f dB (keyframes %.2f dB), SSIM %.4f\n", "held-out PSNR", s.psnr,
-               s.keyframe_psnr, s.ssim);
+  if (s.held_out) {
+    std::fprintf(out, "%-34s %.2f dB (keyframes %.2f dB), SSIM %.4f\n", "held-out PSNR", s.psnr,
+                 s.keyframe_psnr, s.ssim);
+  } else {
+    std::fprintf(out, "%-34s none: the capture has no held-out camera\n", "held-out PSNR");
+  }
   std::fprintf(out, "%-34s %.1f s (%.1f s per inter frame)\n", "encoding time", s.seconds,
                s.seconds_per_inter_frame);
   std::fprintf(out, "%-34s %8s %7s\n", "bytes by layer", "KB/frame", "share");
@@ -129,8 +142,8 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                       {"motion_gain", f.motion_gain},
                       {"motion_skipped", f.motion_skipped},
                       {"psnr_reference", f.psnr_reference},
-                      {"psnr", f.psnr},
-                      {"ssim", f.ssim},
+                      {"psnr", f.held_out ? json(f.psnr) : json(nullptr)},
+                      {"ssim", f.held_out ? json(f.ssim) : json(nullptr)},
                       {"hash", f.hash},
                       {"seconds", seconds}});
   }
@@ -147,9 +160,10 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                 {"kb_per_frame", s.kb_per_frame},
                 {"kb_per_inter_frame", s.kb_per_inter_frame},
                 {"kb_per_keyframe", s.kb_per_keyframe},
-                {"psnr", s.psnr},
-                {"keyframe_psnr", s.keyframe_psnr},
-                {"ssim", s.ssim},
+                {"held_out_camera", s.held_out},
+                {"psnr", s.held_out ? json(s.psnr) : json(nullptr)},
+                {"keyframe_psnr", s.held_out ? json(s.keyframe_psnr) : json(nullptr)},
+                {"ssim", s.held_out ? json(s.ssim) : json(nullptr)},
                 {"seconds", s.seconds},
                 {"seconds_per_inter_frame", s.seconds_per_inter_frame},
                 {"kb_per_frame_by_layer", by_layer}}}};

@@ -28,6 +28,7 @@ struct SequenceSummary {
   double kb_per_frame = 0;        // all frames, keyframes included (the papers' KB/frame)
   double kb_per_inter_frame = 0;  // inter frames only
   double kb_per_keyframe = 0;
+  bool held_out = false;               // the frames were measured on a held-out camera
   double psnr = 0, ssim = 0;           // mean over frames
   double keyframe_psnr = 0;            // mean over keyframes
   double seconds = 0;                  // all stages, all frames

@@ -48,7 +48,8 @@ struct FrameReport {
   // What the adaptive GOP's quality guard compares training_psnr with (dB, inter frames): the
   // keyframe's training PSNR less its noise gap (SequenceEncoder::NoiseGap).
   double psnr_reference = 0;
-  double psnr = 0;  // held-out camera, decoded frame (dB); 0 without a test camera
+  bool held_out = false;  // psnr and ssim were measured: the capture has a held-out camera
+  double psnr = 0;        // held-out camera, decoded frame (dB)
   double ssim = 0;
   std::string hash;  // frame hash (bitstream-spec 7) of the encoder's reconstruction
   StageSeconds seconds;

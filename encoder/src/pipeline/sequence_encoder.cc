@@ -661,6 +661,7 @@ Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,
     M4D_RETURN_IF_ERROR(RenderView(model, test.cameras[0], settings, &context, &render));
     callbacks_.held_out_view(frame, test.images[0], render);
   }
+  report->held_out = true;
   report->psnr = result.mean_psnr;
   report->ssim = result.mean_ssim;
   report->seconds.evaluation = Since(start);
