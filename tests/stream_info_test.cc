@@ -162,6 +162,42 @@ TEST(StreamInfo, EveryThreadCountDecodesTheSameFrames) {
   }
 }
 
+// What the library fills comes back with its reserved bytes zero, whatever the caller's
+// memory held, so that later versions can give them a meaning.
+TEST(StreamInfo, ReservedBytesComeBackZero) {
+  const TestStream stream = ThreeGops(false);
+  auto all_zero = [](const uint8_t* bytes, size_t n) {
+    for (size_t i = 0; i < n; ++i) {
+      if (bytes[i] != 0) return false;
+    }
+    return true;
+  };
+  M4dPacketInfo info;
+  std::memset(&info, 0xab, sizeof(info));
+  ASSERT_EQ(m4d_parse_packet_header(stream.packets[0].data(), stream.packets[0].size(), &info),
+            M4D_OK);
+  EXPECT_TRUE(all_zero(info.reserved, sizeof(info.reserved)));
+  M4dSettings s = DefaultSettings();
+  M4dContext* ctx = nullptr;
+  ASSERT_EQ(m4d_open(&ctx, &s), M4D_OK);
+  for (size_t i = 0; i < 4; ++i) {
+    ASSERT_EQ(m4d_send_packet(ctx, stream.packets[i].data(), stream.packets[i].size()), M4D_OK);
+  }
+  M4dFrame frame;
+  std::memset(&frame, 0xab, sizeof(frame));
+  ASSERT_EQ(m4d_get_frame(ctx, &frame), M4D_OK);
+  EXPECT_TRUE(all_zero(frame.reserved, sizeof(frame.reserved)));
+  EXPECT_TRUE(all_zero(frame.static_layer.reserved, sizeof(frame.static_layer.reserved)));
+  EXPECT_TRUE(all_zero(frame.dynamic_layer.reserved, sizeof(frame.dynamic_layer.reserved)));
+  EXPECT_TRUE(all_zero(frame.props.reserved, sizeof(frame.props.reserved)));
+  m4d_frame_unref(&frame);
+  M4dStreamInfo stream_info;
+  std::memset(&stream_info, 0xab, sizeof(stream_info));
+  ASSERT_EQ(m4d_get_stream_info(ctx, &stream_info), M4D_OK);
+  EXPECT_TRUE(all_zero(stream_info.reserved, sizeof(stream_info.reserved)));
+  m4d_close(&ctx);
+}
+
 TEST(StreamInfo, DefaultsAreDocumented) {
   M4dSettings s;
   std::memset(&s, 0xff, sizeof(s));

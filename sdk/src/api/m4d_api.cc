@@ -129,6 +129,7 @@ int m4d_open(M4dContext** c_out, const M4dSettings* s) {
 
 int m4d_parse_packet_header(const uint8_t* data, size_t size, M4dPacketInfo* info) {
   if (!data || !info) return M4D_ERR_INVALID_ARG;
+  std::memset(info, 0, sizeof(*info));
   m4d::PacketHeader h;
   const m4d::Status status = m4d::ParsePacketHeader(data, size, &h);
   if (!status.ok()) return status.code();

@@ -152,6 +152,7 @@ int m4d_renderer_read_rgb(M4dRenderer* r, uint8_t* rgb, size_t size) {
 int m4d_renderer_stats(const M4dRenderer* r, M4dRenderStats* stats) {
   if (!r || !stats) return M4D_ERR_INVALID_ARG;
   const m4d::GlRenderTimings& t = r->renderer->timings();
+  std::memset(stats, 0, sizeof(*stats));
   stats->visible = static_cast<uint32_t>(t.visible);
   stats->project_ms = t.project_ms;
   stats->sort_ms = t.sort_ms;
