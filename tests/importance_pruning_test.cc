@@ -96,5 +96,15 @@ TEST(ImportancePruningTest, KeepImportantRemovesTheLeastUpToTheShare) {
   EXPECT_TRUE(KeepImportant({}, 0.5).empty());
 }
 
+TEST(ImportancePruningTest, KeepImportantRemovesWhatCoversLessThanTheMinimum) {
+  const std::vector<double> weights = {5.0, 0.1, 3.0, 0.2, 0.2, 1.5};
+  // Below 0.25 pixels: 0.1 and both 0.2, whatever the share.
+  EXPECT_EQ(KeepImportant(weights, 0.0, 0.25), (std::vector<uint8_t>{1, 0, 1, 0, 0, 1}));
+  EXPECT_EQ(KeepImportant(weights, 0.015, 0.25), (std::vector<uint8_t>{1, 0, 1, 0, 0, 1}));
+  // A share past the minimum removes the next ones too; a weight at the minimum stays.
+  EXPECT_EQ(KeepImportant(weights, 0.21, 0.25), (std::vector<uint8_t>{1, 0, 1, 0, 0, 0}));
+  EXPECT_EQ(KeepImportant(weights, 0.0, 0.2), (std::vector<uint8_t>{1, 0, 1, 1, 1, 1}));
+}
+
 }  // namespace
 }  // namespace m4d

@@ -332,6 +332,22 @@ TEST(KeyframeTrainerTest, ImportancePruningWhenDensificationEnds) {
     KeyframeTrainer trainer;
     EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG) << share;
   }
+  // Without a share, what covers less than the minimum in all the views goes.
+  options.importance_prune_share = 0.0f;
+  options.min_importance_pixels = 0.5f;
+  KeyframeTrainer faint;
+  ASSERT_TRUE(faint.Init(options, train, initial).ok());
+  ASSERT_TRUE(faint.Train().ok());
+  EXPECT_GT(faint.importance_pruned(), 0u);
+  EXPECT_EQ(faint.model().size() + faint.importance_pruned(), whole.model().size());
+  EvaluationResult faint_quality;
+  ASSERT_TRUE(faint.Evaluate(train, &faint_quality).ok());
+  EXPECT_GT(faint_quality.mean_psnr, whole_quality.mean_psnr - 0.25);  // 13 % of the model
+  for (float minimum : {-1.0f, NAN}) {
+    options.min_importance_pixels = minimum;
+    KeyframeTrainer trainer;
+    EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG) << minimum;
+  }
 }
 
 // Loss of `model` rendered from the single view of `views` (unclamped, as the trainer).

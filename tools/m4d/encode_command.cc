@@ -90,6 +90,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "important Gaussians holding this share of the views' blending weight (0, the "
                   "default: none)")
       ->check(CLI::Range(0.0, 0.99));
+  cmd->add_option("--prune-below", a->prune_below,
+                  "when densification ends (keyframes and retraining), remove the Gaussians "
+                  "whose blending weight summed over the views is below this many pixels "
+                  "(default 0.05; 0: none)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe uniform at random in the "
                 "cameras' box instead of from photo-consistent points");
@@ -247,6 +252,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"gaussians_per_pixel", KeyframeSchedule(args).max_gaussians_per_pixel},
           {"importance_prune_share", KeyframeSchedule(args).importance_prune_share},
+          {"min_importance_pixels", KeyframeSchedule(args).min_importance_pixels},
           {"quantization_aware_iterations", KeyframeSchedule(args).quantization_aware_iterations},
           {"random_init", args.random_init},
           {"retrain_iterations", o.retrain_iterations},
@@ -293,6 +299,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   }
   if (args.quantization_aware >= 0) o.quantization_aware_iterations = args.quantization_aware;
   if (args.prune_share >= 0) o.importance_prune_share = static_cast<float>(args.prune_share);
+  if (args.prune_below >= 0) o.min_importance_pixels = static_cast<float>(args.prune_below);
   o.random_initialisation = args.random_init;
   return o;
 }

@@ -29,6 +29,7 @@ struct EncodeArguments {
   int quantization_aware =
       -1;  // quantization-aware iterations of keyframe training (< 0: the schedule's)
   double prune_share = -1;         // importance pruning of keyframe training (< 0: the schedule's)
+  double prune_below = -1;         // its minimum importance in pixels (< 0: the schedule's)
   std::string keyframe_ply;        // first keyframe read from here instead of trained
   double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
   double tau_g = -1;               // compensation's replication threshold (< 0: the rate point's)

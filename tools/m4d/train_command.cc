@@ -33,6 +33,7 @@ struct TrainArguments {
   bool random_init = false;
   double gaussians_per_pixel = -1;  // < 0: the schedule's
   double prune_share = -1;          // < 0: the schedule's
+  double prune_below = -1;          // < 0: the schedule's
   int quantization_aware = -1;      // iterations (< 0: the schedule's)
   std::string rate_point = "r4";    // the keyframe bits the model is trained and coded for
   std::vector<int> keyframe_bits;   // 6 bit depths (empty: the rate point's)
@@ -95,6 +96,7 @@ Status RunTrain(const TrainArguments& args) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
   if (args.prune_share >= 0) options.importance_prune_share = static_cast<float>(args.prune_share);
+  if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
   M4D_RETURN_IF_ERROR(TrainingQuantization(args, &options.quantization));
   options.threads = args.threads;
@@ -164,6 +166,11 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "when densification ends, remove the least important Gaussians holding this "
                   "share of the views' blending weight (0, the default: none)")
       ->check(CLI::Range(0.0, 0.99));
+  cmd->add_option("--prune-below", args->prune_below,
+                  "when densification ends, remove the Gaussians whose blending weight summed "
+                  "over the views is below this many pixels (default 0.05, none with "
+                  "--reference-schedule; 0: none)")
+      ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--quantization-aware", args->quantization_aware,
                   "the last N iterations render the model as coded at the rate point (default: "
                   "a quarter of the run; 0: none)")

@@ -29,7 +29,8 @@ Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
   return Status::Ok();
 }
 
-std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share) {
+std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share,
+                                   double min_weight) {
   std::vector<uint32_t> order(weights.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(),
@@ -39,7 +40,7 @@ std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double sh
   double removed = 0;
   for (uint32_t i : order) {
     removed += weights[i];
-    if (removed > budget) break;
+    if (removed > budget && !(weights[i] < min_weight)) break;
     keep[i] = 0;
   }
   return keep;

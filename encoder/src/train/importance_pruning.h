@@ -25,8 +25,10 @@ Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
                        BackwardWorkspace* workspace, std::vector<double>* weights);
 
 // keep[i] = 0 for the least important Gaussians whose weights sum to at most `share` of the
-// total (ties broken by index), 1 for the others.
-std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share);
+// total (ties broken by index) and for every Gaussian whose weight is below `min_weight`
+// (pixels: what it covers in all the views together), 1 for the others.
+std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share,
+                                   double min_weight = 0.0);
 
 }  // namespace m4d
 

@@ -44,7 +44,8 @@ void CopyLeadingRows(const GaussianModel& from, size_t rows, GaussianModel* to) 
         to->values(param).begin());
   }
 }
-constexpr float kShortGaussiansPerPixel = 0.25f;  // keyframe_trainer.h, Short()
+constexpr float kShortGaussiansPerPixel = 0.25f;    // keyframe_trainer.h, Short()
+constexpr float kShortMinImportancePixels = 0.05f;  // keyframe_trainer.h, min_importance_pixels
 
 Status OptionError(const std::string& what) {
   return Status(M4D_ERR_INVALID_ARG, "keyframe training options: " + what);
@@ -72,6 +73,7 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   o.densification.max_gaussians = 1000000;
   o.max_gaussians_per_pixel = kShortGaussiansPerPixel;
   o.quantization_aware_iterations = iterations / 4;
+  o.min_importance_pixels = kShortMinImportancePixels;
   o.densification.max_prune_fraction = 0.5f;
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
   // the floor near the cameras of a 640x360 capture.
@@ -108,6 +110,9 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (o.quantization_aware_iterations < 0) return OptionError("negative quantization-aware count");
   if (!(o.importance_prune_share >= 0.0f && o.importance_prune_share < 1.0f)) {
     return OptionError("importance prune share outside [0, 1)");
+  }
+  if (!(o.min_importance_pixels >= 0.0f) || !std::isfinite(o.min_importance_pixels)) {
+    return OptionError("minimum importance");
   }
   if (!(o.opacity_reset_value > 0.0f && o.opacity_reset_value < 1.0f)) {
     return OptionError("opacity reset value");
@@ -254,7 +259,8 @@ Status KeyframeTrainer::PruneUnimportant() {
   std::vector<double> weights;
   M4D_RETURN_IF_ERROR(
       BlendingWeights(model_, views_, Settings(), &context_, &backward_workspace_, &weights));
-  std::vector<uint8_t> keep = KeepImportant(weights, options_.importance_prune_share);
+  std::vector<uint8_t> keep =
+      KeepImportant(weights, options_.importance_prune_share, options_.min_importance_pixels);
   std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(options_.frozen_gaussians), 1);
   const size_t before = model_.size();
   KeepGaussians(keep, &model_, &optimizer_, nullptr);
@@ -290,7 +296,9 @@ Status KeyframeTrainer::Step() {
       last_reset_ = it;
     }
   }
-  if (options_.importance_prune_share > 0.0f && it == options_.densify_until) {
+  const bool prunes =
+      options_.importance_prune_share > 0.0f || options_.min_importance_pixels > 0.0f;
+  if (prunes && it == options_.densify_until) {
     M4D_RETURN_IF_ERROR(PruneUnimportant());
     densified = true;  // this iteration's gradients belong to the Gaussians before pruning
   }

@@ -60,6 +60,11 @@ struct KeyframeTrainingOptions {
   // together hold this share of the views' blending weight are removed (importance_pruning.h;
   // 0: none); the rest of the run fine-tunes the others.
   float importance_prune_share = 0.0f;
+  // At the same iteration, Gaussians whose blending weight summed over every pixel of every
+  // training view is below this many pixels are removed too (0: none): all they add to all
+  // the views together is that many pixels' colour at most, yet each costs the keyframe as
+  // many bytes as any other (Short(): about a quarter of a sparse rig's keyframe).
+  float min_importance_pixels = 0.0f;
   // The last this-many iterations render the model as the keyframe coder at `quantization`
   // will reconstruct it, and apply the gradients to the unquantized values (straight-through):
   // the model learns values whose quantization renders well (0: none).
