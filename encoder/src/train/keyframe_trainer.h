@@ -63,7 +63,8 @@ struct KeyframeTrainingOptions {
   // At the same iteration, Gaussians whose blending weight summed over every pixel of every
   // training view is below this many pixels are removed too (0: none): all they add to all
   // the views together is that many pixels' colour at most, yet each costs the keyframe as
-  // many bytes as any other (Short(): about a quarter of a sparse rig's keyframe).
+  // many bytes as any other. Off by default: the room they leave under the per-pixel cap is
+  // refilled by a later keyframe's retraining, which costs a sparse rig's stream more.
   float min_importance_pixels = 0.0f;
   // The last this-many iterations render the model as the keyframe coder at `quantization`
   // will reconstruct it, and apply the gradients to the unquantized values (straight-through):
