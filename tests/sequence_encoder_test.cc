@@ -256,6 +256,34 @@ TEST(SequenceEncoderTest, ContentAppearingAwayFromMotionStartsAGop) {
   EXPECT_GT(guarded.frames[3].training_psnr, unguarded.frames[3].training_psnr + 2.0);
 }
 
+// A GOP restarted by the quality guard (the newcomer at frame 3) is retrained from its
+// frame's prediction, motion applied, with the newcomer seeded where the prediction does not
+// explain the views, so even a short retraining beats the prediction it replaces. Measured
+// over 40 iterations: 25.3 dB against the prediction's 23.0; from the last coded frame without
+// seeds (the encoder before), 21.5 dB.
+TEST(SequenceEncoderTest, ARestartedGopStartsFromItsFramesPrediction) {
+  Capture capture = MakeCapture(0.12f);
+  EncoderOptions o = SmallOptions();
+  o.retrain_iterations = 40;
+  o.gop.threshold = 1e9f;  // r_t never decides
+  o.gop.max_psnr_drop = 2.0f;
+  SequenceEncoder encoder(capture, o);
+  SequenceReport report;
+  ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+  ASSERT_EQ(report.frames.size(), static_cast<size_t>(kFrames));
+  EXPECT_EQ(report.frames[0].prediction_psnr, 0.0);
+  int restarted = 0;
+  for (int f = 1; f < kFrames; ++f) {
+    const FrameReport& r = report.frames[f];
+    if (!r.keyframe) continue;
+    ++restarted;
+    ASSERT_GT(r.prediction_psnr, 10.0) << f;
+    EXPECT_GT(r.seeded, 0u) << f;
+    EXPECT_GT(r.training_psnr, r.prediction_psnr + 1.0) << f;
+  }
+  EXPECT_GE(restarted, 1);
+}
+
 // Compensation is a mode decision: coded only where it raises the training views' PSNR by
 // compensation_min_gain. Always coded, it adds Gaussians; never coded, nothing is added or
 // removed, its measured gain is still reported, and the closed loop holds either way.

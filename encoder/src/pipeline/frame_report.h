@@ -48,6 +48,12 @@ struct FrameReport {
   // What the adaptive GOP's quality guard compares training_psnr with (dB, inter frames): the
   // keyframe's training PSNR less its noise gap (SequenceEncoder::NoiseGap).
   double psnr_reference = 0;
+  // A keyframe that restarted a GOP after its frame was predicted: that prediction's
+  // training_psnr (dB), what the retraining started from and has to beat (0: none).
+  double prediction_psnr = 0;
+  // Such a keyframe: Gaussians seeded where that prediction was unexplained
+  // (retraining_growth.h).
+  size_t seeded = 0;
   bool held_out = false;  // psnr and ssim were measured: the capture has a held-out camera
   double psnr = 0;        // held-out camera, decoded frame (dB)
   double ssim = 0;

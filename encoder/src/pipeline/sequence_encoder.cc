@@ -18,6 +18,7 @@
 #include "layers/mlp_writer.h"
 #include "layers/motion_grid.h"
 #include "layers/motion_grid_writer.h"
+#include "pipeline/retraining_growth.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
 #include "train/scene_extent.h"
@@ -34,6 +35,10 @@ struct SequenceEncoder::Gop {
   GaussianSet static_coded, dynamic_coded;  // the keyframe's sets before quantization
   GaussianSet static_set;                   // decoded, fixed for the GOP
   GaussianSet dynamic_set;                  // decoded, of the last coded frame
+  // When a frame restarts the GOP: its dynamic set predicted from the last coded frame
+  // (motion applied), where the retraining starts.
+  GaussianSet predicted;
+  double prediction_psnr = 0;  // its training PSNR (0: not measured)
   GridBox box;
   MlpWeights mlp;          // float, as trained (what the keyframe packet quantizes)
   MlpWeights decoded_mlp;  // as the decoder reads it back
@@ -407,6 +412,8 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   const bool fixed = !options_.gop.adaptive && options_.gop.fixed_length > 0;
   if (length >= options_.gop.max_length || (fixed && length >= options_.gop.fixed_length)) {
     *restart = true;
+    gop.predicted = gop.dynamic_set;  // no motion estimated: the last frame's
+    gop.prediction_psnr = 0;
     return Status::Ok();
   }
   FrameReport report;
@@ -492,6 +499,8 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
       (report.ratio > options_.gop.threshold ||
        (options_.gop.max_psnr_drop > 0 && drop > options_.gop.max_psnr_drop))) {
     *restart = true;  // frame becomes the next GOP's keyframe; nothing of it is written
+    gop.predicted = std::move(moved);
+    gop.prediction_psnr = report.training_psnr;
     return Status::Ok();
   }
 
@@ -517,10 +526,44 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
 Status SequenceEncoder::Restart(int frame) {
   if (gop_->keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
   const Clock::time_point start = Clock::now();
-  // The new keyframe starts from the last decoded frame's whole state (paper section 3.5).
+  // The new keyframe starts from the last decoded frame's whole state (paper section 3.5)
+  // moved to this frame, the prediction its inter frame would have coded, and grows what that
+  // prediction does not explain (retraining_growth.h).
   GaussianModel model;
-  M4D_RETURN_IF_ERROR(CombinedModel(gop_->static_set, gop_->dynamic_set, &model));
+  M4D_RETURN_IF_ERROR(CombinedModel(gop_->static_set, gop_->predicted, &model));
   const bool dependent = DependentGop(frame);
+  KeyframeTrainingOptions o = RetrainingOptions(frame, dependent);
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
+  RetrainingGrowth growth;
+  if (o.max_gaussians_per_pixel > 0.0f) {
+    RetrainingGrowthOptions g;
+    g.gaussians_per_pixel = o.max_gaussians_per_pixel;
+    g.unexplained = options_.decoupling.change;
+    g.render = Settings();
+    g.seed = o.seed;
+    M4D_RETURN_IF_ERROR(GrowForUnexplained(views, g, &model, &growth));
+    o.densification.max_gaussians = std::min(o.densification.max_gaussians, growth.cap);
+  }
+  KeyframeTrainer trainer;
+  M4D_RETURN_IF_ERROR(trainer.Init(o, std::move(views), std::move(model)));
+  M4D_RETURN_IF_ERROR(trainer.Train([&](const TrainingProgress& p) {
+    if (callbacks_.training) callbacks_.training("retrain", frame, p);
+  }));
+  const double prediction_psnr = gop_->prediction_psnr;
+  if (dependent) {
+    GaussianSet kept = std::move(gop_->static_set);
+    M4D_RETURN_IF_ERROR(
+        StartDependentGop(frame, trainer.TakeModel(), std::move(kept), Since(start)));
+  } else {
+    M4D_RETURN_IF_ERROR(StartGop(frame, trainer.TakeModel(), Since(start)));
+  }
+  gop_->keyframe_report.prediction_psnr = prediction_psnr;
+  gop_->keyframe_report.seeded = growth.seeded;
+  return Status::Ok();
+}
+
+KeyframeTrainingOptions SequenceEncoder::RetrainingOptions(int frame, bool dependent) const {
   KeyframeTrainingOptions o = options_.keyframe;
   // A dependent GOP keeps the static set exactly: its Gaussians (first in the model) stay.
   o.frozen_gaussians = dependent ? gop_->static_set.size() : 0;
@@ -539,16 +582,7 @@ Status SequenceEncoder::Restart(int frame) {
   o.threads = options_.threads;
   o.seed = options_.seed + static_cast<uint64_t>(frame);
   std::copy(options_.background, options_.background + 3, o.background);
-  TrainingViews views;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
-  KeyframeTrainer trainer;
-  M4D_RETURN_IF_ERROR(trainer.Init(o, std::move(views), std::move(model)));
-  M4D_RETURN_IF_ERROR(trainer.Train([&](const TrainingProgress& p) {
-    if (callbacks_.training) callbacks_.training("retrain", frame, p);
-  }));
-  if (!dependent) return StartGop(frame, trainer.TakeModel(), Since(start));
-  GaussianSet kept = std::move(gop_->static_set);
-  return StartDependentGop(frame, trainer.TakeModel(), std::move(kept), Since(start));
+  return o;
 }
 
 bool SequenceEncoder::DependentGop(int frame) const {

@@ -88,6 +88,8 @@ class SequenceEncoder {
   Status EncodeInterFrame(int frame, bool* restart);
   Status WriteKeyframe();
   Status Restart(int frame);
+  // The keyframe schedule shortened to options_.retrain_iterations for a restart at `frame`.
+  KeyframeTrainingOptions RetrainingOptions(int frame, bool dependent) const;
   Status Evaluate(int frame, const GaussianSet& static_set, const GaussianSet& dynamic_set,
                   FrameReport* report);
   // The keyframe's overfit to its own frame's noise, in dB: its PSNR over the pixels that did

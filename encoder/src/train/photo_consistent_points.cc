@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "common/thread_pool.h"
@@ -110,7 +111,56 @@ Status CheckOptions(const TrainingViews& views, const PhotoConsistencyOptions& o
   if (o.points * static_cast<size_t>(o.rays_per_point) > kMaxRays) {
     return LimitError("photo-consistent points: too many rays");
   }
+  if (o.ray_masks != nullptr) {
+    if (o.ray_masks->size() != static_cast<size_t>(views.size())) {
+      return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: one mask per view");
+    }
+    for (int v = 0; v < views.size(); ++v) {
+      const Camera& c = views.cameras[v];
+      if ((*o.ray_masks)[v].size() != static_cast<size_t>(c.width) * c.height) {
+        return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: a mask's size");
+      }
+    }
+  }
   return Status::Ok();
+}
+
+// (view, pixel index) of every pixel a ray may start from.
+std::vector<std::pair<int, uint32_t>> RayPixels(const TrainingViews& views,
+                                                const std::vector<std::vector<float>>& masks) {
+  std::vector<std::pair<int, uint32_t>> pixels;
+  for (int v = 0; v < views.size(); ++v) {
+    for (size_t p = 0; p < masks[v].size(); ++p) {
+      if (masks[v][p] > 0.0f) pixels.emplace_back(v, static_cast<uint32_t>(p));
+    }
+  }
+  return pixels;
+}
+
+// Rays through uniformly random points of the views, or of their masked pixels.
+std::vector<Ray> DrawRays(const TrainingViews& views, const PhotoConsistencyOptions& options) {
+  std::vector<Ray> rays(options.points * static_cast<size_t>(options.rays_per_point));
+  TrainingRandom rng(options.seed);
+  if (options.ray_masks == nullptr) {
+    for (Ray& ray : rays) {
+      ray.view = static_cast<int>(rng.Below(static_cast<uint32_t>(views.size())));
+      ray.u = rng.Uniform() * static_cast<float>(views.cameras[ray.view].width);
+      ray.v = rng.Uniform() * static_cast<float>(views.cameras[ray.view].height);
+      ray.jitter = rng.Uniform();
+    }
+    return rays;
+  }
+  const std::vector<std::pair<int, uint32_t>> pixels = RayPixels(views, *options.ray_masks);
+  if (pixels.empty()) return {};
+  for (Ray& ray : rays) {
+    const auto [view, index] = pixels[rng.Below(static_cast<uint32_t>(pixels.size()))];
+    const uint32_t width = static_cast<uint32_t>(views.cameras[view].width);
+    ray.view = view;
+    ray.u = static_cast<float>(index % width) + rng.Uniform();
+    ray.v = static_cast<float>(index / width) + rng.Uniform();
+    ray.jitter = rng.Uniform();
+  }
+  return rays;
 }
 
 }  // namespace
@@ -122,14 +172,7 @@ Status PhotoConsistentPoints(const TrainingViews& views, const PhotoConsistencyO
   if (!(extent > 0)) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: zero extent");
   // The other views that must see a point (the ray's own view sees it by construction).
   const int min_views = std::max(1, std::min(options.min_views, views.size() / 2) - 1);
-  std::vector<Ray> rays(options.points * static_cast<size_t>(options.rays_per_point));
-  TrainingRandom rng(options.seed);
-  for (Ray& ray : rays) {
-    ray.view = static_cast<int>(rng.Below(static_cast<uint32_t>(views.size())));
-    ray.u = rng.Uniform() * static_cast<float>(views.cameras[ray.view].width);
-    ray.v = rng.Uniform() * static_cast<float>(views.cameras[ray.view].height);
-    ray.jitter = rng.Uniform();
-  }
+  const std::vector<Ray> rays = DrawRays(views, options);
   std::vector<Found> found(rays.size());
   ThreadPool pool(options.threads);
   std::vector<std::vector<float>> scratch(static_cast<size_t>(pool.size()));

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "common/status.h"
 #include "dataset/point_cloud.h"
@@ -36,12 +37,16 @@ struct PhotoConsistencyOptions {
   // Depth range of the candidates, in multiples of the cameras' extent (scene_extent.h):
   // from the near plane to far_extents times it.
   float far_extents = 50.0f;
+  // Per view, per pixel (row-major): rays start only where the mask is positive (null: every
+  // pixel). A later keyframe seeds what its prediction does not explain this way.
+  const std::vector<std::vector<float>>* ray_masks = nullptr;
   uint64_t seed = 0;
   int threads = 0;
 };
 
-// M4D_ERR_INVALID_ARG for no views, a zero camera extent or bad options; the result holds
-// fewer points than asked when fewer rays find a distinctive depth.
+// M4D_ERR_INVALID_ARG for no views, a zero camera extent, bad options or masks that do not
+// match the views; the result holds fewer points than asked when fewer rays find a
+// distinctive depth (none when the masks are empty).
 Status PhotoConsistentPoints(const TrainingViews& views, const PhotoConsistencyOptions& options,
                              PointCloud* points);
 
