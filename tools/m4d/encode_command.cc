@@ -93,7 +93,7 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--prune-below", a->prune_below,
                   "when densification ends (keyframes and retraining), remove the Gaussians "
                   "whose blending weight summed over the views is below this many pixels "
-                  "(0, the default: none)")
+                  "(default 0.05; 0: none)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe uniform at random in the "

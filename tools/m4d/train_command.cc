@@ -168,7 +168,8 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       ->check(CLI::Range(0.0, 0.99));
   cmd->add_option("--prune-below", args->prune_below,
                   "when densification ends, remove the Gaussians whose blending weight summed "
-                  "over the views is below this many pixels (0, the default: none)")
+                  "over the views is below this many pixels (default 0.05, none with "
+                  "--reference-schedule; 0: none)")
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--quantization-aware", args->quantization_aware,
                   "the last N iterations render the model as coded at the rate point (default: "

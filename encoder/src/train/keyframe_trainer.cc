@@ -44,7 +44,8 @@ void CopyLeadingRows(const GaussianModel& from, size_t rows, GaussianModel* to) 
         to->values(param).begin());
   }
 }
-constexpr float kShortGaussiansPerPixel = 0.25f;  // keyframe_trainer.h, Short()
+constexpr float kShortGaussiansPerPixel = 0.25f;    // keyframe_trainer.h, Short()
+constexpr float kShortMinImportancePixels = 0.05f;  // keyframe_trainer.h, min_importance_pixels
 
 Status OptionError(const std::string& what) {
   return Status(M4D_ERR_INVALID_ARG, "keyframe training options: " + what);
@@ -72,6 +73,7 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   o.densification.max_gaussians = 1000000;
   o.max_gaussians_per_pixel = kShortGaussiansPerPixel;
   o.quantization_aware_iterations = iterations / 4;
+  o.min_importance_pixels = kShortMinImportancePixels;
   o.densification.max_prune_fraction = 0.5f;
   // The reference's screen-size test never fires (densification.h); ours, at 20 px, pruned
   // the floor near the cameras of a 640x360 capture.
