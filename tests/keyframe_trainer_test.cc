@@ -23,6 +23,7 @@
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/progress_bar.h"
+#include "train/prune_share_selection.h"
 #include "train/scene_extent.h"
 
 namespace m4d {
@@ -111,6 +112,17 @@ KeyframeTrainingOptions TestOptions() {
   o.seed = 3;
   o.threads = 2;
   return o;
+}
+
+// The capture's indices of the training views SelectPruneShare holds out.
+std::vector<int> ValidationCameras(const Capture& capture) {
+  const std::vector<int> train = capture.TrainCameras();
+  std::vector<Camera> cameras;
+  for (int c : train) cameras.push_back(capture.camera(0, c));
+  std::vector<int> held_out;
+  const int count = HeldOutCount(static_cast<int>(train.size()), PruneShareSelectionOptions());
+  for (int v : ValidationViews(cameras, count)) held_out.push_back(train[static_cast<size_t>(v)]);
+  return held_out;
 }
 
 struct TrainingRun {
@@ -645,6 +657,116 @@ TEST(KeyframeTrainerTest, ShortScheduleMapsTheReference) {
   EXPECT_EQ(s.max_gaussians_per_pixel, 0.25f);
   EXPECT_EQ(ref.quantization_aware_iterations, 0);
   EXPECT_EQ(s.quantization_aware_iterations, 1750);
+}
+
+// A copy of a trainer stopped before the prune goes on exactly as a whole run with its share.
+TEST(KeyframeTrainerTest, ACopyBranchesAsAWholeRun) {
+  const Scene scene = MakeScene();
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, scene.capture.TrainCameras(), &train).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), &initial)
+          .ok());
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 300;  // densification and the prune until 250
+  KeyframeTrainer trunk, whole;
+  ASSERT_TRUE(trunk.Init(options, train, initial).ok());
+  ASSERT_TRUE(trunk.TrainUntil(options.densify_until - 1).ok());
+  EXPECT_EQ(trunk.iteration(), options.densify_until - 1);
+  KeyframeTrainer branch = trunk;
+  branch.SetImportancePruneShare(0.05f);
+  ASSERT_TRUE(branch.Train().ok());
+  options.importance_prune_share = 0.05f;
+  ASSERT_TRUE(whole.Init(options, train, initial).ok());
+  ASSERT_TRUE(whole.Train().ok());
+  EXPECT_GT(branch.importance_pruned(), 0u);
+  ASSERT_EQ(branch.model().size(), whole.model().size());
+  EXPECT_EQ(branch.model().positions, whole.model().positions);
+  EXPECT_EQ(branch.model().sh, whole.model().sh);
+  EXPECT_EQ(branch.model().opacity_logits, whole.model().opacity_logits);
+  // The trunk itself was not moved by its branch.
+  EXPECT_EQ(trunk.iteration(), options.densify_until - 1);
+  EXPECT_EQ(trunk.importance_pruned(), 0u);
+}
+
+TEST(PruneShareSelectionTest, ShortenedScheduleKeepsTheProportions) {
+  const KeyframeTrainingOptions s = ShortenedSchedule(KeyframeTrainingOptions::Short(2000), 0.5);
+  const KeyframeTrainingOptions half = KeyframeTrainingOptions::Short(1000);
+  EXPECT_EQ(s.iterations, 1000);
+  EXPECT_EQ(s.learning_rates.position.max_steps, 1000);
+  EXPECT_EQ(s.densify_until, half.densify_until);
+  EXPECT_EQ(s.opacity_reset_interval, 429);  // 857 / 2, rounded half away
+  EXPECT_EQ(s.quantization_aware_iterations, 0);
+  EXPECT_EQ(s.importance_prune_share, 0.0f);
+  EXPECT_EQ(s.min_importance_pixels, half.min_importance_pixels);
+  EXPECT_TRUE(ValidateTrainingOptions(s).ok());
+}
+
+TEST(PruneShareSelectionTest, TheBoundGrowsWithTheHalvings) {
+  PruneShareSelectionOptions selection;
+  PruneShareTrial unpruned, quarter, same;
+  unpruned.bytes = 1000;
+  quarter.bytes = 250;
+  same.bytes = 1000;
+  quarter.gaussians = 100;  // the bound follows the bytes, not the count
+  EXPECT_DOUBLE_EQ(AllowedLoss(unpruned, quarter, selection), 1.0);  // 2 halvings x 0.5 dB
+  EXPECT_EQ(AllowedLoss(unpruned, same, selection), 0.0);
+  selection.max_loss_per_halving_db = 0.2;
+  EXPECT_DOUBLE_EQ(AllowedLoss(unpruned, quarter, selection), 0.4);
+}
+
+TEST(PruneShareSelectionTest, HoldsOutTheViewsTheOthersSurround) {
+  const float target[3] = {0, 0, 10};
+  std::vector<Camera> cameras;
+  for (float x : {-3.0f, -1.0f, 0.5f, 2.5f, 4.0f}) {
+    const float eye[3] = {x, 0, 0};
+    cameras.push_back(test::LookAtCamera(kWidth, kHeight, 70.0f, 0, 0, eye, target));
+  }
+  EXPECT_EQ(ValidationViews(cameras, 1), std::vector<int>({2}));
+  EXPECT_EQ(ValidationViews(cameras, 2), std::vector<int>({1, 2}));
+  PruneShareSelectionOptions selection;
+  EXPECT_EQ(HeldOutCount(5, selection), 0);  // fewer than min_views
+  EXPECT_EQ(HeldOutCount(6, selection), 1);
+  EXPECT_EQ(HeldOutCount(15, selection), 2);
+  EXPECT_EQ(HeldOutCount(27, selection), 3);
+}
+
+// On the test scene the candidates cost little: a loose bound takes the largest; a bound no
+// pruned branch meets tries them all and keeps everything; too few views hold none out.
+TEST(PruneShareSelectionTest, TakesTheLargestShareWithinTheBound) {
+  const Scene scene = MakeScene();
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 600;  // the selection's half: densification and the prune until 150
+  PruneShareSelectionOptions selection;
+  selection.shares = {0.2f, 0.05f};
+  selection.max_loss_per_halving_db = 10.0;
+  PruneShareChoice loose;
+  ASSERT_TRUE(SelectPruneShare(scene.capture, 0, options, selection, nullptr, &loose).ok());
+  EXPECT_EQ(loose.share, 0.2f);
+  ASSERT_EQ(loose.trials.size(), 1u);
+  EXPECT_EQ(loose.validation_cameras, ValidationCameras(scene.capture));
+  EXPECT_EQ(loose.validation_cameras.size(), 1u);  // 7 training views
+  EXPECT_LT(loose.trials[0].gaussians, loose.unpruned.gaussians);
+  EXPECT_LT(loose.trials[0].bytes, loose.unpruned.bytes);
+  EXPECT_GT(loose.trials[0].bytes, 0u);
+  EXPECT_GT(loose.unpruned.psnr, 15.0);
+  EXPECT_NEAR(loose.trials[0].psnr, loose.unpruned.psnr, 3.0);
+
+  selection.max_loss_per_halving_db = -20.0;  // a pruned branch would have to gain
+  PruneShareChoice strict;
+  ASSERT_TRUE(SelectPruneShare(scene.capture, 0, options, selection, nullptr, &strict).ok());
+  EXPECT_EQ(strict.share, 0.0f);
+  ASSERT_EQ(strict.trials.size(), 2u);
+  EXPECT_EQ(strict.trials[0].psnr, loose.trials[0].psnr);  // the same branch, deterministic
+  EXPECT_EQ(strict.trials[1].share, 0.05f);
+
+  selection.min_views = 8;  // the scene trains on 7
+  PruneShareChoice sparse;
+  ASSERT_TRUE(SelectPruneShare(scene.capture, 0, options, selection, nullptr, &sparse).ok());
+  EXPECT_EQ(sparse.share, 0.0f);
+  EXPECT_TRUE(sparse.validation_cameras.empty());
+  EXPECT_TRUE(sparse.trials.empty());
 }
 
 TEST(ProgressBarTest, FormatsTheLine) {

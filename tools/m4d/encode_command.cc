@@ -85,11 +85,8 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "the last N iterations of the first keyframe's training render it as coded "
                   "(default: a quarter of the run; retraining: a quarter of its run; 0: none)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--prune-share", a->prune_share,
-                  "when densification ends (keyframes and retraining), remove the least "
-                  "important Gaussians holding this share of the views' blending weight (0, the "
-                  "default: none)")
-      ->check(CLI::Range(0.0, 0.99));
+  AddPruneShareOptions(cmd, "keyframes and retraining; with --keyframe-ply 0 unless given",
+                       &a->prune);
   cmd->add_option("--prune-below", a->prune_below,
                   "when densification ends (keyframes and retraining), remove the Gaussians "
                   "whose blending weight summed over the views is below this many pixels "
@@ -251,7 +248,12 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_iterations", KeyframeSchedule(args).iterations},
           {"max_gaussians", KeyframeSchedule(args).densification.max_gaussians},
           {"gaussians_per_pixel", KeyframeSchedule(args).max_gaussians_per_pixel},
-          {"importance_prune_share", KeyframeSchedule(args).importance_prune_share},
+          {"importance_prune_share",
+           args.prune.Automatic() ? nlohmann::json("auto")
+                                  : nlohmann::json(KeyframeSchedule(args).importance_prune_share)},
+          {"prune_max_loss_per_halving_db", args.prune.Automatic()
+                                                ? nlohmann::json(args.prune.max_loss_per_halving_db)
+                                                : nlohmann::json()},
           {"min_importance_pixels", KeyframeSchedule(args).min_importance_pixels},
           {"quantization_aware_iterations", KeyframeSchedule(args).quantization_aware_iterations},
           {"random_init", args.random_init},
@@ -298,7 +300,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
     o.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
   if (args.quantization_aware >= 0) o.quantization_aware_iterations = args.quantization_aware;
-  if (args.prune_share >= 0) o.importance_prune_share = static_cast<float>(args.prune_share);
+  if (!args.prune.Automatic()) o.importance_prune_share = static_cast<float>(args.prune.share);
   if (args.prune_below >= 0) o.min_importance_pixels = static_cast<float>(args.prune_below);
   o.random_initialisation = args.random_init;
   return o;
@@ -335,6 +337,14 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
   M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
   M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
+  // An automatic share needs the first keyframe's training; a given keyframe has none.
+  PruneShareChoice prune_choice;
+  const bool trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
+  if (trains_first && args.prune.Automatic()) {
+    M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, options.first_frame,
+                                          FirstKeyframeTraining(options), args.prune,
+                                          &options.keyframe.importance_prune_share, &prune_choice));
+  }
 
   ProgressBar bar;
   bool header = true;
@@ -391,7 +401,10 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   M4D_RETURN_IF_ERROR(
       WriteFileAtomically(args.output, encoder.stream().data(), encoder.stream().size()));
   const std::string json_path = ReportPath(args);
-  const nlohmann::json extra = {{"options", EncodeOptionsJson(args)}};
+  const nlohmann::json extra = {
+      {"options", EncodeOptionsJson(args)},
+      {"prune_share_selection",
+       trains_first ? PruneShareJson(args.prune, prune_choice) : nlohmann::json()}};
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
   M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));
   std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",

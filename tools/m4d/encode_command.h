@@ -13,6 +13,7 @@
 #include "common/status.h"
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
+#include "prune_share_arguments.h"
 #include "train/gaussian_model.h"
 
 namespace m4d {
@@ -28,7 +29,7 @@ struct EncodeArguments {
   double gaussians_per_pixel = -1;  // that cap per training pixel (< 0: the schedule's)
   int quantization_aware =
       -1;  // quantization-aware iterations of keyframe training (< 0: the schedule's)
-  double prune_share = -1;         // importance pruning of keyframe training (< 0: the schedule's)
+  PruneShareArguments prune;       // importance pruning of keyframe training and retraining
   double prune_below = -1;         // its minimum importance in pixels (< 0: the schedule's)
   std::string keyframe_ply;        // first keyframe read from here instead of trained
   double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
@@ -49,7 +50,8 @@ Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* option
 
 // The keyframe training schedule the arguments ask for: the options' schedule, or the short
 // schedule scaled to keyframe_iterations, capped at max_gaussians and
-// gaussians_per_pixel, pruned by prune_share, quantization_aware iterations at the end.
+// gaussians_per_pixel, pruned by a given prune share (an automatic one is chosen later, once
+// the capture is open), quantization_aware iterations at the end.
 KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args);
 
 // Adds the encoder's options (stages, GOP, ablations, rate) to a command.

@@ -8,8 +8,10 @@
 #include <sstream>
 
 #include "capture_arguments.h"
+#include "io/atomic_file.h"
 #include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
+#include "prune_share_arguments.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
@@ -44,14 +46,20 @@ std::string PlotHeader(const std::string& png, const char* title, const char* x,
   return s.str();
 }
 
-// Trains one frame with the sweep's keyframe schedule into a 3DGS PLY, showing progress.
-Status TrainToPly(const Capture& capture, int frame, const EncodeArguments& args,
-                  const std::string& path) {
+// The sweep's keyframe schedule with the stream's SH degree, threads, seed and background.
+KeyframeTrainingOptions SweepKeyframeTraining(const EncodeArguments& args) {
   KeyframeTrainingOptions o = KeyframeSchedule(args);
   o.sh_degree = args.encoder.sh_degree;
   o.threads = args.encoder.threads;
   o.seed = args.encoder.seed;
   std::copy(args.encoder.background, args.encoder.background + 3, o.background);
+  return o;
+}
+
+// Trains one frame with the sweep's keyframe schedule into a 3DGS PLY, showing progress.
+Status TrainToPly(const Capture& capture, int frame, const EncodeArguments& args,
+                  const std::string& path) {
+  const KeyframeTrainingOptions o = SweepKeyframeTraining(args);
   ProgressBar bar;
   GaussianModel model;
   M4D_RETURN_IF_ERROR(TrainKeyframe(
@@ -107,6 +115,17 @@ Status ReadPoint(const std::string& json_path, RdPoint* point) {
   return Status::Ok();
 }
 
+// The share an earlier sweep chose (PrepareSharedKeyframe).
+Status ReadPruneShare(const std::string& path, double* share) {
+  std::ifstream file(path);
+  double value = -1;
+  if (!(file >> value) || !(value >= 0.0 && value < 1.0)) {
+    return Status(M4D_ERR_INVALID_ARG, path + ": not a prune share");
+  }
+  *share = value;
+  return Status::Ok();
+}
+
 // Whether an earlier run wrote this stream and its report with these options.
 bool EarlierRun(const EncodeArguments& run) {
   std::ifstream file(run.output + ".json");
@@ -152,10 +171,27 @@ void AddSweepOutputOptions(CLI::App* cmd, SweepOutput* out) {
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
   if (!args->keyframe_ply.empty()) return Status::Ok();
   const std::string path = (std::filesystem::path(out.dir) / "keyframe.ply").string();
-  if (!out.reuse || !std::filesystem::exists(path)) {
+  // An automatic prune share is chosen once, with the keyframe, and kept beside it for --reuse.
+  const std::string share_path = path + ".prune_share";
+  const bool automatic = args->prune.Automatic();
+  if (out.reuse && std::filesystem::exists(path) &&
+      (!automatic || std::filesystem::exists(share_path))) {
+    if (automatic) M4D_RETURN_IF_ERROR(ReadPruneShare(share_path, &args->prune.share));
+  } else {
     Capture capture;
     M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
+    float share = 0;
+    PruneShareChoice choice;
+    M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, args->encoder.first_frame,
+                                          SweepKeyframeTraining(*args), args->prune, &share,
+                                          &choice));
+    args->prune.share = share;
     M4D_RETURN_IF_ERROR(TrainToPly(capture, args->encoder.first_frame, *args, path));
+    if (automatic) {
+      const std::string text = std::to_string(share) + "\n";
+      M4D_RETURN_IF_ERROR(WriteFileAtomically(
+          share_path, reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    }
   }
   args->keyframe_ply = path;
   return Status::Ok();

@@ -14,6 +14,7 @@
 #include "layers/gaussian_set_writer.h"
 #include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
+#include "prune_share_arguments.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
 #include "train/view_evaluation.h"
@@ -32,11 +33,11 @@ struct TrainArguments {
   uint64_t seed = 1;
   bool random_init = false;
   double gaussians_per_pixel = -1;  // < 0: the schedule's
-  double prune_share = -1;          // < 0: the schedule's
-  double prune_below = -1;          // < 0: the schedule's
-  int quantization_aware = -1;      // iterations (< 0: the schedule's)
-  std::string rate_point = "r4";    // the keyframe bits the model is trained and coded for
-  std::vector<int> keyframe_bits;   // 6 bit depths (empty: the rate point's)
+  PruneShareArguments prune;
+  double prune_below = -1;         // < 0: the schedule's
+  int quantization_aware = -1;     // iterations (< 0: the schedule's)
+  std::string rate_point = "r4";   // the keyframe bits the model is trained and coded for
+  std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
@@ -95,12 +96,14 @@ Status RunTrain(const TrainArguments& args) {
   if (args.gaussians_per_pixel >= 0) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
-  if (args.prune_share >= 0) options.importance_prune_share = static_cast<float>(args.prune_share);
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
   M4D_RETURN_IF_ERROR(TrainingQuantization(args, &options.quantization));
   options.threads = args.threads;
   options.seed = args.seed;
+  PruneShareChoice choice;
+  M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, args.frame, options, args.prune,
+                                        &options.importance_prune_share, &choice));
   const auto start = std::chrono::steady_clock::now();
   ProgressBar bar;
   GaussianModel model;
@@ -162,10 +165,7 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "at most this many Gaussians per pixel of the training views (0: no such "
                   "cap; default 0.25, none with --reference-schedule)")
       ->check(CLI::Range(0.0, 64.0));
-  cmd->add_option("--prune-share", args->prune_share,
-                  "when densification ends, remove the least important Gaussians holding this "
-                  "share of the views' blending weight (0, the default: none)")
-      ->check(CLI::Range(0.0, 0.99));
+  AddPruneShareOptions(cmd, "keyframe training", &args->prune);
   cmd->add_option("--prune-below", args->prune_below,
                   "when densification ends, remove the Gaussians whose blending weight summed "
                   "over the views is below this many pixels (default 0.05, none with "

@@ -235,20 +235,24 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
   return Status::Ok();
 }
 
+KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options) {
+  KeyframeTrainingOptions o = options.keyframe;
+  o.sh_degree = options.sh_degree;
+  o.threads = options.threads;
+  o.seed = options.seed;
+  o.quantization = options.quantization;
+  std::copy(options.background, options.background + 3, o.background);
+  return o;
+}
+
 Status SequenceEncoder::ScratchKeyframe(int frame, GaussianModel* model) {
   if (keyframe_source_) {
     M4D_RETURN_IF_ERROR(keyframe_source_(frame, model));
   } else if (first_keyframe_ && frame == options_.first_frame) {
     *model = *first_keyframe_;
   } else {
-    KeyframeTrainingOptions o = options_.keyframe;
-    o.sh_degree = options_.sh_degree;
-    o.threads = options_.threads;
-    o.seed = options_.seed;
-    o.quantization = options_.quantization;
-    std::copy(options_.background, options_.background + 3, o.background);
     return TrainKeyframe(
-        capture_, frame, o,
+        capture_, frame, FirstKeyframeTraining(options_),
         [&](const TrainingProgress& p) {
           if (callbacks_.training) callbacks_.training("keyframe", frame, p);
         },

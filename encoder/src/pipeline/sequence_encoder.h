@@ -47,6 +47,10 @@ struct EncoderCallbacks {
   std::function<void(int frame, const Image& truth, const Image& render)> held_out_view;
 };
 
+// The training of a keyframe from scratch: options.keyframe with the stream's SH degree,
+// quantization, background, threads and seed.
+KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options);
+
 class SequenceEncoder {
  public:
   SequenceEncoder(const Capture& capture, const EncoderOptions& options);

@@ -169,11 +169,11 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   stats_.Reset(model_.size());
   iteration_ = 0;
   active_sh_degree_ = std::min(options.start_sh_degree, model_.sh_degree);
-  rng_ = std::make_unique<TrainingRandom>(options.seed);
+  rng_.emplace(options.seed);
   view_order_.clear();
   view_cursor_ = 0;
   last_reset_ = 0;
-  pool_ = std::make_unique<ThreadPool>(options.threads);
+  pool_ = std::make_shared<ThreadPool>(options.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
   camera_colour_.Init(views_.size(), options.camera_colour_learning_rate);
   progress_ = TrainingProgress();
@@ -243,8 +243,8 @@ Status KeyframeTrainer::Densify() {
   const bool prune_by_size =
       options_.opacity_reset_interval > 0 && iteration_ > options_.opacity_reset_interval;
   DensifyCounts counts;
-  M4D_RETURN_IF_ERROR(DensifyAndPrune(options_.densification, scene_extent_, prune_by_size,
-                                      rng_.get(), &model_, &optimizer_, &stats_, &counts));
+  M4D_RETURN_IF_ERROR(DensifyAndPrune(options_.densification, scene_extent_, prune_by_size, &*rng_,
+                                      &model_, &optimizer_, &stats_, &counts));
   densify_totals_.cloned += counts.cloned;
   densify_totals_.split += counts.split;
   densify_totals_.pruned += counts.pruned;
@@ -312,13 +312,18 @@ Status KeyframeTrainer::Step() {
 }
 
 Status KeyframeTrainer::Train(const ProgressCallback& progress, int progress_every) {
+  return TrainUntil(options_.iterations, progress, progress_every);
+}
+
+Status KeyframeTrainer::TrainUntil(int last, const ProgressCallback& progress, int progress_every) {
   using Clock = std::chrono::steady_clock;
   Clock::time_point last_report = Clock::now();
   int last_iteration = iteration_;
-  while (iteration_ < options_.iterations) {
+  last = std::min(last, options_.iterations);
+  while (iteration_ < last) {
     M4D_RETURN_IF_ERROR(Step());
-    const bool report = progress_every > 0 &&
-                        (iteration_ % progress_every == 0 || iteration_ == options_.iterations);
+    const bool report =
+        progress_every > 0 && (iteration_ % progress_every == 0 || iteration_ == last);
     if (progress && report) {
       const Clock::time_point now = Clock::now();
       const double seconds = std::chrono::duration<double>(now - last_report).count();
@@ -336,19 +341,16 @@ Status KeyframeTrainer::Evaluate(const TrainingViews& views, EvaluationResult* r
   return EvaluateViews(model_, views, Settings(), &context_, result);
 }
 
-Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                     const ProgressCallback& progress, GaussianModel* model) {
-  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
-  TrainingViews views;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
+Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
+                            const KeyframeTrainingOptions& options, GaussianModel* initial) {
   PointInitialisationOptions init;
   init.threads = options.threads;
   init.sh_degree = options.sh_degree;
   const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
-  GaussianModel initial;
   if (capture.initial_points.size() > 0) {
-    M4D_RETURN_IF_ERROR(InitialiseFromPoints(capture.initial_points, init, &initial));
-  } else if (!options.random_initialisation) {
+    return InitialiseFromPoints(capture.initial_points, init, initial);
+  }
+  if (!options.random_initialisation) {
     PhotoConsistencyOptions photo;
     photo.points = start_points;
     photo.seed = options.seed;
@@ -359,16 +361,24 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
       return Status(M4D_ERR_INVALID_ARG,
                     "keyframe training: no point is seen by enough views to start from");
     }
-    M4D_RETURN_IF_ERROR(InitialiseFromPoints(points, init, &initial));
-  } else {
-    const SceneBounds bounds = CameraSceneBounds(views.cameras);
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = bounds.centre[a] - bounds.extent;
-      hi[a] = bounds.centre[a] + bounds.extent;
-    }
-    M4D_RETURN_IF_ERROR(InitialiseRandom(lo, hi, start_points, options.seed, init, &initial));
+    return InitialiseFromPoints(points, init, initial);
   }
+  const SceneBounds bounds = CameraSceneBounds(views.cameras);
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = bounds.centre[a] - bounds.extent;
+    hi[a] = bounds.centre[a] + bounds.extent;
+  }
+  return InitialiseRandom(lo, hi, start_points, options.seed, init, initial);
+}
+
+Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
+                     const ProgressCallback& progress, GaussianModel* model) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
+  GaussianModel initial;
+  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial));
   KeyframeTrainer trainer;
   M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
   M4D_RETURN_IF_ERROR(trainer.Train(progress));

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -58,7 +59,8 @@ struct KeyframeTrainingOptions {
   float max_gaussians_per_pixel = 0.0f;
   // When densification ends (iteration densify_until), the least important Gaussians that
   // together hold this share of the views' blending weight are removed (importance_pruning.h;
-  // 0: none); the rest of the run fine-tunes the others.
+  // 0: none); the rest of the run fine-tunes the others. What a capture affords differs
+  // (prune_share_selection.h chooses it; the encoder's command line does by default).
   float importance_prune_share = 0.0f;
   // At the same iteration, Gaussians whose blending weight summed over every pixel of every
   // training view is below this many pixels are removed too (0: none): all they add to all
@@ -117,11 +119,10 @@ struct KeyframeTrainingOptions {
   // the realistic scene's 3 views of 320x240 the unbounded keyframe reached 0.56 Gaussians
   // per pixel; bounded, it has half the Gaussians and 0.27 dB more on its held-out view, while
   // the default scene's 15 views (0.16 per pixel) are left as they were. No importance
-  // pruning: it halves the default scene's keyframe for 0.05 dB, but costs a real capture
-  // and a sparse rig more than coarser quantization of the same bytes (README, "Keyframes
-  // pruned by importance"). The last quarter of the run is quantization-aware (at
-  // `quantization`, which the encoder sets to its rate point's keyframe bits).
-  // The same proportions at another length (Short() is Short(7000)): densification from
+  // pruning by share: the share a capture affords is chosen per capture
+  // (prune_share_selection.h), not by the schedule. The last quarter of the run is
+  // quantization-aware (at `quantization`, which the encoder sets to its rate point's keyframe
+  // bits). The same proportions at another length (Short() is Short(7000)): densification from
   // iterations / 14 to half the run every iterations / 70 (at most 100), the opacity reset at
   // 3/7 of the run, SH degree up every iterations / 30.
   static KeyframeTrainingOptions Short(int iterations = 7000);
@@ -147,6 +148,8 @@ class KeyframeTrainer {
   // Iterations until options.iterations, calling progress (if set) every progress_every
   // iterations and after the last.
   Status Train(const ProgressCallback& progress = nullptr, int progress_every = 10);
+  // The same until iteration `last` (at most options().iterations).
+  Status TrainUntil(int last, const ProgressCallback& progress = nullptr, int progress_every = 10);
 
   // Quality on `views` at the active SH degree and the training background.
   Status Evaluate(const TrainingViews& views, EvaluationResult* result);
@@ -156,6 +159,10 @@ class KeyframeTrainer {
   float scene_extent() const { return scene_extent_; }
   const KeyframeTrainingOptions& options() const { return options_; }
   const GaussianModel& model() const { return model_; }
+  // The share a prune still to come removes (options().importance_prune_share): a copy of a
+  // trainer stopped before densify_until continues as a branch with another share
+  // (prune_share_selection.h). Copies share the thread pool.
+  void SetImportancePruneShare(float share) { options_.importance_prune_share = share; }
   // Moves the model out; the trainer needs Init again afterwards.
   GaussianModel TakeModel() {
     rng_.reset();
@@ -187,14 +194,22 @@ class KeyframeTrainer {
   float scene_extent_ = 0;
   int iteration_ = 0;
   int active_sh_degree_ = 0;
-  std::unique_ptr<TrainingRandom> rng_;
+  std::optional<TrainingRandom> rng_;
   std::vector<int> view_order_;
   size_t view_cursor_ = 0;
   int last_reset_ = 0;  // iteration of the last opacity reset (0: none yet)
 
-  std::unique_ptr<ThreadPool> pool_;
-  RenderContext context_;
-  BackwardWorkspace backward_workspace_;
+  // Per-iteration buffers, which a copy of the trainer does not need to share.
+  template <typename T>
+  struct Scratch : T {
+    Scratch() = default;
+    Scratch(const Scratch&) : T() {}
+    Scratch& operator=(const Scratch&) { return *this; }
+  };
+
+  std::shared_ptr<ThreadPool> pool_;
+  Scratch<RenderContext> context_;
+  Scratch<BackwardWorkspace> backward_workspace_;
   PhotometricLoss loss_;
   Image rendered_;
   Image loss_gradient_;
@@ -206,6 +221,11 @@ class KeyframeTrainer {
   DensifyCounts densify_totals_;
   size_t importance_pruned_ = 0;
 };
+
+// The model keyframe training starts from: the capture's points, else photo-consistent points
+// of the views (random ones in the cameras' box with options.random_initialisation).
+Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
+                            const KeyframeTrainingOptions& options, GaussianModel* initial);
 
 // The whole keyframe stage: loads the training views of `frame`, initialises from the
 // capture's points (randomly in the cameras' box when it has none), trains, and returns the

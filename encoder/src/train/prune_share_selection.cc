@@ -1,0 +1,169 @@
+#include "train/prune_share_selection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <utility>
+
+#include "common/byte_writer.h"
+#include "layers/gaussian_set_writer.h"
+#include "train/view_evaluation.h"
+
+namespace m4d {
+namespace {
+
+int Scaled(int count, double fraction) {
+  if (count <= 0) return count;
+  return std::max(1, static_cast<int>(std::lround(count * fraction)));
+}
+
+// The views not in `held_out` (sorted), and those in it.
+void SplitViews(const TrainingViews& views, const std::vector<int>& held_out, TrainingViews* fit,
+                TrainingViews* validation) {
+  for (int v = 0; v < views.size(); ++v) {
+    const bool out = std::binary_search(held_out.begin(), held_out.end(), v);
+    TrainingViews* into = out ? validation : fit;
+    into->camera_indices.push_back(views.camera_indices[static_cast<size_t>(v)]);
+    into->cameras.push_back(views.cameras[static_cast<size_t>(v)]);
+    into->images.push_back(views.images[static_cast<size_t>(v)]);
+  }
+}
+
+// Runs `trainer` to the end of its schedule and measures the held-out view.
+Status RunBranch(const std::string& run, const TrainingViews& validation,
+                 const SelectionProgress& progress, KeyframeTrainer* trainer,
+                 PruneShareTrial* trial) {
+  M4D_RETURN_IF_ERROR(trainer->Train([&](const TrainingProgress& p) {
+    if (progress) progress(run, p);
+  }));
+  EvaluationResult quality;
+  M4D_RETURN_IF_ERROR(trainer->Evaluate(validation, &quality));
+  trial->share = trainer->options().importance_prune_share;
+  trial->psnr = quality.mean_psnr;
+  trial->gaussians = trainer->model().size();
+  GaussianSet set;
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(trainer->model(), trainer->model().sh_degree, &set));
+  std::vector<uint8_t> bytes;
+  ByteWriter writer(&bytes);
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(set, trainer->options().quantization, &writer));
+  trial->bytes = bytes.size();
+  return Status::Ok();
+}
+
+std::string ShareRun(float share) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "share %g", static_cast<double>(share));
+  return text;
+}
+
+}  // namespace
+
+double AllowedLoss(const PruneShareTrial& unpruned, const PruneShareTrial& pruned,
+                   const PruneShareSelectionOptions& selection) {
+  if (pruned.bytes == 0 || unpruned.bytes <= pruned.bytes) return 0.0;
+  const double halvings =
+      std::log2(static_cast<double>(unpruned.bytes) / static_cast<double>(pruned.bytes));
+  return selection.max_loss_per_halving_db * halvings;
+}
+
+std::vector<int> ValidationViews(const std::vector<Camera>& cameras, int count) {
+  std::vector<std::array<float, 3>> centres(cameras.size());
+  for (size_t c = 0; c < cameras.size(); ++c) CameraCentre(cameras[c], centres[c].data());
+  std::vector<double> sums(cameras.size(), 0.0);
+  for (size_t c = 0; c < cameras.size(); ++c) {
+    for (const std::array<float, 3>& other : centres) {
+      const double dx = centres[c][0] - other[0], dy = centres[c][1] - other[1],
+                   dz = centres[c][2] - other[2];
+      sums[c] += std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+  }
+  std::vector<int> order(cameras.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return sums[static_cast<size_t>(a)] < sums[static_cast<size_t>(b)];
+  });
+  order.resize(std::min(order.size(), static_cast<size_t>(std::max(count, 0))));
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+int HeldOutCount(int views, const PruneShareSelectionOptions& selection) {
+  if (views < std::max(selection.min_views, 2)) return 0;
+  const int every = std::max(selection.views_per_held_out, 1);
+  return std::clamp((views + every / 2) / every, 1, views - 1);
+}
+
+KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options, double fraction) {
+  KeyframeTrainingOptions o = options;
+  o.iterations = Scaled(options.iterations, fraction);
+  o.learning_rates.position.max_steps = Scaled(options.learning_rates.position.max_steps, fraction);
+  o.densify_from = Scaled(options.densify_from, fraction);
+  o.densify_until = Scaled(options.densify_until, fraction);
+  o.densify_interval = Scaled(options.densify_interval, fraction);
+  o.opacity_reset_interval = Scaled(options.opacity_reset_interval, fraction);
+  o.reset_recovery = Scaled(options.reset_recovery, fraction);
+  o.sh_degree_interval = Scaled(options.sh_degree_interval, fraction);
+  o.quantization_aware_iterations = 0;
+  o.importance_prune_share = 0.0f;
+  return o;
+}
+
+Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial,
+                        const KeyframeTrainingOptions& options,
+                        const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice) {
+  *choice = PruneShareChoice();
+  const int held_out_count = HeldOutCount(views.size(), selection);
+  if (held_out_count == 0) return Status::Ok();
+  const KeyframeTrainingOptions schedule = ShortenedSchedule(options, selection.schedule_fraction);
+  if (schedule.densify_until <= 1 || schedule.densify_until > schedule.iterations) {
+    return Status(M4D_ERR_INVALID_ARG, "prune share selection: the schedule never prunes");
+  }
+  const std::vector<int> held_out = ValidationViews(views.cameras, held_out_count);
+  for (int v : held_out) {
+    choice->validation_cameras.push_back(views.camera_indices[static_cast<size_t>(v)]);
+  }
+  TrainingViews fit, validation;
+  SplitViews(views, held_out, &fit, &validation);
+
+  // Shared until the iteration before the prune; each branch is a copy from there.
+  KeyframeTrainer trunk;
+  M4D_RETURN_IF_ERROR(trunk.Init(schedule, std::move(fit), initial));
+  M4D_RETURN_IF_ERROR(trunk.TrainUntil(schedule.densify_until - 1, [&](const TrainingProgress& p) {
+    if (progress) progress("unpruned", p);
+  }));
+  KeyframeTrainer unpruned = trunk;
+  M4D_RETURN_IF_ERROR(RunBranch("unpruned", validation, progress, &unpruned, &choice->unpruned));
+  for (float share : selection.shares) {
+    KeyframeTrainer branch = trunk;
+    branch.SetImportancePruneShare(share);
+    PruneShareTrial trial;
+    M4D_RETURN_IF_ERROR(RunBranch(ShareRun(share), validation, progress, &branch, &trial));
+    choice->trials.push_back(trial);
+    if (choice->unpruned.psnr - trial.psnr <= AllowedLoss(choice->unpruned, trial, selection)) {
+      choice->share = share;
+      break;
+    }
+  }
+  return Status::Ok();
+}
+
+Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
+                        const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
+  GaussianModel initial;
+  const int held_out_count = HeldOutCount(views.size(), selection);
+  if (held_out_count > 0) {
+    TrainingViews fit, validation;
+    SplitViews(views, ValidationViews(views.cameras, held_out_count), &fit, &validation);
+    M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, fit, options, &initial));
+  }
+  return SelectPruneShare(views, initial, options, selection, progress, choice);
+}
+
+}  // namespace m4d

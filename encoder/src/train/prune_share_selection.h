@@ -1,0 +1,97 @@
+// Prune share selection: how much of a keyframe importance pruning may remove
+// (KeyframeTrainingOptions::importance_prune_share) is a property of the capture, not a
+// constant. A 0.1 share halves the default scene's keyframe for 0.26 dB on its held-out
+// camera, yet costs Panoptic basketball 0.57 dB at 0.05 and a sparse rig 0.27 dB at 0.01; and
+// the training views cannot tell these apart (they lose least where the held-out camera loses
+// most: README, "Keyframes pruned by importance"). So training views are held out (one in ten,
+// at least one; one view alone measured Panoptic's differences with 0.3 dB of noise): the
+// schedule, shortened, runs on the others to where pruning happens; from there one branch
+// goes on unpruned and one per candidate share, largest first. The first candidate whose
+// held-out views lose at most max_loss_per_halving_db for every halving of the keyframe's
+// coded bytes (against the unpruned branch) is the share. The bound is a rate trade: the rate
+// points trade about 3 dB of the stream per halving of its bytes, so a share within 0.5 dB
+// per halving of the keyframe is the cheaper way to the same bytes. The held-out views
+// predict the test cameras' loss (default scene at 0.1: 0.29 against 0.26 dB; Panoptic at
+// 0.03: 0.36 against 0.35 dB).
+#ifndef M4D_ENCODER_TRAIN_PRUNE_SHARE_SELECTION_H_
+#define M4D_ENCODER_TRAIN_PRUNE_SHARE_SELECTION_H_
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "render/camera.h"
+#include "train/gaussian_model.h"
+#include "train/keyframe_trainer.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+struct PruneShareSelectionOptions {
+  std::vector<float> shares = {0.1f, 0.03f, 0.01f};  // candidates, tried largest first
+  // Held-out views' PSNR a candidate may lose against the unpruned branch, in dB per halving
+  // of the coded bytes (log2 of the unpruned branch's bytes over the candidate's, each model
+  // coded as a keyframe at the options' quantization and SH degree).
+  double max_loss_per_halving_db = 0.5;
+  // With fewer training views none is held out and the share is 0: a sparse rig trained on
+  // one view less is another capture, and it is where pruning costs most.
+  int min_views = 6;
+  // One view held out per this many training views (rounded, at least one).
+  int views_per_held_out = 10;
+  // The shortened schedule: this share of the keyframe's iterations, same proportions.
+  double schedule_fraction = 0.5;
+};
+
+struct PruneShareTrial {
+  float share = 0;
+  double psnr = 0;  // the held-out training views' mean PSNR after the branch (dB)
+  size_t gaussians = 0;
+  size_t bytes = 0;  // the model coded as a keyframe set
+};
+
+struct PruneShareChoice {
+  float share = 0;
+  std::vector<int> validation_cameras;  // the capture's indices of the views held out (none:
+                                        // too few views, share 0)
+  PruneShareTrial unpruned;
+  std::vector<PruneShareTrial> trials;  // the candidates tried, in order
+};
+
+// Progress of one branch: run is "unpruned" or "share S".
+using SelectionProgress = std::function<void(const std::string& run, const TrainingProgress&)>;
+
+// What `pruned` may lose against `unpruned` (dB): the bound per halving times the halvings of
+// the coded bytes (0 when they did not fall).
+double AllowedLoss(const PruneShareTrial& unpruned, const PruneShareTrial& pruned,
+                   const PruneShareSelectionOptions& selection);
+
+// The `count` views held out, in increasing order: those whose camera centres have the least
+// summed distance to the others (the first on ties), views the others surround as a held-out
+// camera usually is.
+std::vector<int> ValidationViews(const std::vector<Camera>& cameras, int count);
+
+// How many of `views` training views SelectPruneShare holds out (0: too few to select).
+int HeldOutCount(int views, const PruneShareSelectionOptions& selection);
+
+// `options` with every iteration count scaled by `fraction` (at least 1 where it was
+// positive), without quantization-aware iterations or importance pruning by share.
+KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options, double fraction);
+
+// Chooses the share for a keyframe trained with `options` on `views`; `initial` is the model
+// to start from, built without the held-out views (ValidationViews) as InitialKeyframeModel
+// builds it. progress may be null.
+Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial,
+                        const KeyframeTrainingOptions& options,
+                        const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice);
+
+// The same from the capture's frame: loads its training views and the initial model.
+Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
+                        const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_TRAIN_PRUNE_SHARE_SELECTION_H_
