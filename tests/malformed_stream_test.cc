@@ -72,7 +72,7 @@ TEST_F(MalformedStream, PacketHeaderFields) {
             M4D_ERR_CHECKSUM);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[5] |= 2; })), M4D_ERR_BITSTREAM);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[7] = 1; })), M4D_ERR_BITSTREAM);
-  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 8; })), M4D_ERR_UNSUPPORTED);
+  EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 9; })), M4D_ERR_UNSUPPORTED);
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[4] = 0; })), M4D_ERR_UNSUPPORTED);
   // payload_size above 2^26.
   EXPECT_EQ(SendWithReplacement(0, Edited(0, [](Packet* p) { (*p)[15] = 0x10; })), M4D_ERR_LIMIT);

@@ -33,7 +33,8 @@ GaussianSet Shifted(const GaussianSet& set) {
   return moved;
 }
 
-Scene MakeScene() {
+// red_change: added to the moved blob's red SH DC coefficient in frame t (its shading changed).
+Scene MakeScene(float red_change = 0.0f) {
   Scene s;
   test::SceneOptions background;
   background.count = 400;
@@ -50,6 +51,7 @@ Scene MakeScene() {
   blob.sh_dc = 1.5f;
   s.dynamic_set = test::RandomGaussians(blob, 22);
   s.moved_truth = Shifted(s.dynamic_set);
+  for (size_t i = 0; i < s.moved_truth.size(); ++i) s.moved_truth.sh[3 * i] += red_change;
   const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.moved_truth)};
   RenderSettings settings;
   RenderContext context;
@@ -166,6 +168,42 @@ TEST(MotionEstimationTest, GridBoxCoversTheSetWithAMargin) {
     EXPECT_NEAR(box.min[a], lo - 0.1f * (hi - lo), 1e-4f);
     EXPECT_NEAR(1.0f / box.scale[a], 1.2f * (hi - lo), 1e-4f);
   }
+}
+
+TEST(MotionEstimationTest, LearnsAColourChangeWithTheMotion) {
+  const float red_change = -0.6f;
+  Scene s = MakeScene(red_change);
+  const float steps[kMaxGridLevels] = {1.0f / 16, 1.0f / 16, 0, 0};
+  auto estimate = [&](float appearance_step, MotionEstimationResult* result) {
+    MotionEstimator estimator(SmallGrid(), MlpConfig{1, 32}, steps);
+    estimator.StartGop(3);
+    MotionEstimationOptions options;
+    options.iterations = 400;
+    options.train_mlp = true;
+    options.rate_weight = 1e-6;
+    options.sh_degree = 0;
+    options.seed = 4;
+    options.appearance_step = appearance_step;
+    return estimator.Estimate(s.views, s.static_set, s.dynamic_set, DynamicGridBox(s.dynamic_set),
+                              options, result);
+  };
+  MotionEstimationResult without, with;
+  ASSERT_TRUE(estimate(0.0f, &without).ok());
+  EXPECT_TRUE(without.appearance.empty());
+  const float step = 1.0f / 64;
+  ASSERT_TRUE(estimate(step, &with).ok());
+  ASSERT_EQ(with.appearance.size(), 3 * s.dynamic_set.size());
+  // The visible blob's mean change: red as rendered, green and blue about unchanged.
+  double mean[3] = {0, 0, 0};
+  for (size_t i = 0; i < s.dynamic_set.size(); ++i) {
+    for (int c = 0; c < 3; ++c) mean[c] += with.appearance[3 * i + c] * step;
+  }
+  for (double& m : mean) m /= static_cast<double>(s.dynamic_set.size());
+  EXPECT_NEAR(mean[0], red_change, 0.25);
+  EXPECT_NEAR(mean[1], 0.0, 0.1);
+  EXPECT_NEAR(mean[2], 0.0, 0.1);
+  EXPECT_GT(with.appearance_bits, 0.0);
+  EXPECT_LT(with.color_loss, without.color_loss);
 }
 
 }  // namespace

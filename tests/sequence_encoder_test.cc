@@ -352,6 +352,32 @@ TEST(SequenceEncoderTest, MotionIsCodedOnlyWhereItGains) {
   }
 }
 
+// The colour change trained with the motion is a mode decision of its own: coded (an
+// APPEARANCE packet) exactly when its measured gain passes the bound.
+TEST(SequenceEncoderTest, AppearanceIsCodedOnlyWhereItGains) {
+  constexpr int kCodedFrames = 3;
+  Capture capture = MakeCapture();
+  for (double min_gain : {-1.0, 1e9}) {
+    EncoderOptions o = SmallOptions();
+    o.appearance_min_gain = min_gain;
+    o.gop.adaptive = false;
+    o.frame_count = kCodedFrames;
+    o.ablation.decoupling = false;
+    SequenceEncoder encoder(capture, o);
+    SequenceReport report;
+    ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+    const std::vector<std::string> decoded = DecodedHashes(encoder.stream());
+    ASSERT_EQ(decoded.size(), static_cast<size_t>(kCodedFrames));
+    for (int f = 1; f < kCodedFrames; ++f) {
+      const FrameReport& frame = report.frames[f];
+      EXPECT_EQ(frame.hash, decoded[f]) << f;
+      EXPECT_NE(frame.appearance_gain, 0.0) << f;  // measured either way
+      EXPECT_EQ(frame.appearance_skipped, min_gain > 0) << f;
+      EXPECT_EQ(frame.bytes.by_type[M4D_PACKET_APPEARANCE] > 0, !frame.appearance_skipped) << f;
+    }
+  }
+}
+
 // The per-frame baseline: every frame a static keyframe from its own training (here from the
 // caller's source, as `m4d rd` shares one training per frame between rate points).
 TEST(SequenceEncoderTest, IndependentFramesAreStaticKeyframesFromTheSource) {

@@ -5,6 +5,7 @@
 // feature, and every feature the walk knows must have a row.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,12 @@ class Reader {
   uint32_t U8() { return Need(1) ? data_[pos_++] : 0; }
   uint32_t U16() { return U8() | (U8() << 8); }
   uint32_t U32() { return U16() | (U16() << 16); }
+  float F32() {
+    const uint32_t bits = U32();
+    float v;
+    std::memcpy(&v, &bits, 4);
+    return v;
+  }
   void Skip(size_t n) {
     if (Need(n)) pos_ += n;
   }
@@ -160,6 +167,13 @@ struct Walk {
     if (!any) Add("grid_all_zero");
   }
 
+  void Appearance(Reader* r) {
+    Add("appearance");
+    const float step = r->F32();
+    if (step != std::exp2(std::round(std::log2(step)))) Add("appearance_step_not_power_of_two");
+    SymbolBlock(r);
+  }
+
   void Compensation(Reader* r) {
     const uint32_t removed = r->VarUint();
     Add(removed ? "removed>0" : "removed=0");
@@ -211,6 +225,9 @@ struct Walk {
       case M4D_PACKET_MOTION_GRID:
         if (++inter_in_gop >= 5) Add("inter_frames_in_gop>=5");
         MotionGrid(&r);
+        break;
+      case M4D_PACKET_APPEARANCE:
+        Appearance(&r);
         break;
       case M4D_PACKET_COMPENSATION:
         Compensation(&r);

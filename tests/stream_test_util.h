@@ -38,6 +38,8 @@ struct TestStreamShape {
   // static_change_step-th static Gaussian and adds 5 more with a STATIC_UPDATE (0: none).
   bool dependent_gops = false;
   int static_change_step = 0;
+  // Inter frames change the dynamic set's colours with an APPEARANCE (bitstream 0.3).
+  bool appearance = false;
 };
 
 // A dependent keyframe's static change of MakeTestStream.
@@ -66,6 +68,17 @@ inline std::vector<Packet> SplitPackets(const std::vector<uint8_t>& bytes) {
     pos += info.packet_size;
   }
   return packets;
+}
+
+constexpr float kTestAppearanceStep = 0.0123f;
+
+// APPEARANCE values for a set of n: every third Gaussian changes, by -7..7 steps.
+inline std::vector<int32_t> TestAppearanceValues(size_t n, int frame) {
+  std::vector<int32_t> values(3 * n, 0);
+  for (size_t i = static_cast<size_t>(frame) % 3; i < n; i += 3) {
+    for (int c = 0; c < 3; ++c) values[3 * i + c] = static_cast<int32_t>((i + 5 * c) % 15) - 7;
+  }
+  return values;
 }
 
 inline TestStream MakeTestStream(const TestStreamShape& shape = TestStreamShape()) {
@@ -100,6 +113,10 @@ inline TestStream MakeTestStream(const TestStreamShape& shape = TestStreamShape(
           SyntheticMotionGrid(options.sequence.grid, seed * 7 + f, -0.6f, 0.6f, 0.2f));
       if (!status.ok()) throw std::runtime_error(status.message());
       const size_t n = writer.moved_dynamic_set().size();
+      if (shape.appearance) {
+        status = writer.WriteAppearance(kTestAppearanceStep, TestAppearanceValues(n, f));
+        if (!status.ok()) throw std::runtime_error(status.message());
+      }
       std::vector<uint8_t> removed(n, 0);
       for (size_t i = static_cast<size_t>(f); i < n; i += 37) removed[i] = 1;
       status = writer.WriteCompensation(

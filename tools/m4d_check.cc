@@ -17,9 +17,10 @@
 
 namespace {
 
-constexpr uint32_t kLastType = M4D_PACKET_STATIC_UPDATE;
+constexpr uint32_t kLastType = M4D_PACKET_APPEARANCE;
 const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
-                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE"};
+                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE",
+                            "APPEARANCE"};
 
 // The grammar of spec 2 as the packet types that may follow each one.
 bool MayFollow(uint32_t previous, uint32_t type) {
@@ -34,6 +35,8 @@ bool MayFollow(uint32_t previous, uint32_t type) {
     case M4D_PACKET_KEYFRAME_DYNAMIC:
       return type == M4D_PACKET_MLP_WEIGHTS;
     case M4D_PACKET_MOTION_GRID:
+      return type == M4D_PACKET_APPEARANCE || type == M4D_PACKET_COMPENSATION;
+    case M4D_PACKET_APPEARANCE:
       return type == M4D_PACKET_COMPENSATION;
     default:  // MLP_WEIGHTS or COMPENSATION ended a frame; a dependent keyframe may follow
       return type == M4D_PACKET_SEQUENCE_HEADER || type == M4D_PACKET_MOTION_GRID ||

@@ -13,7 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "bitstream/packet_header.h"
+#include "common/byte_writer.h"
 #include "common/crc32.h"
+#include "entropy/symbol_block_writer.h"
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
@@ -118,6 +121,19 @@ size_t Find(const Packet& p, const char* text) {
   return p.size();
 }
 
+// An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
+Packet AppearancePacket(float step, uint32_t values = 3 * 80) {
+  std::vector<int32_t> q(values);
+  for (size_t i = 0; i < q.size(); ++i) q[i] = static_cast<int32_t>(i % 7) - 3;
+  std::vector<uint8_t> payload;
+  m4d::ByteWriter writer(&payload);
+  writer.WriteF32(step);
+  if (!m4d::WriteSymbolBlock(q.data(), q.size(), &writer).ok()) return {};
+  Packet packet;
+  m4d::AppendPacket(M4D_PACKET_APPEARANCE, 1, false, payload.data(), payload.size(), &packet);
+  return packet;
+}
+
 struct Case {
   const char* name;
   const char* error;
@@ -163,7 +179,7 @@ std::vector<Case> Cases() {
       {"reserved_flag_bit", "M4D_ERR_BITSTREAM", "flags bit 1 set", SetHeaderByte(kMotion, 5, 2)},
       {"reserved_field", "M4D_ERR_BITSTREAM", "the reserved u16 of a header not 0",
        SetHeaderByte(kMotion, 7, 1)},
-      {"unknown_packet_type", "M4D_ERR_UNSUPPORTED", "packet type 8", SetHeaderByte(kMotion, 4, 8)},
+      {"unknown_packet_type", "M4D_ERR_UNSUPPORTED", "packet type 9", SetHeaderByte(kMotion, 4, 9)},
       {"payload_size_above_limit", "M4D_ERR_LIMIT",
        "a header declares a payload above MAX_PAYLOAD_SIZE (2^26)",
        [](Stream* s, std::vector<uint8_t>*) {
@@ -220,6 +236,31 @@ std::vector<Case> Cases() {
       {"static_update_after_sequence_header", "M4D_ERR_BITSTREAM",
        "a STATIC_UPDATE in a random-access keyframe (KEYFRAME_STATIC's type changed to 7)",
        SetHeaderByte(kStatic, 4, M4D_PACKET_STATIC_UPDATE)},
+      // Version 0.3's APPEARANCE (valid between a MOTION_GRID and its COMPENSATION).
+      {"appearance_in_v02_stream", "M4D_ERR_BITSTREAM",
+       "an APPEARANCE in a stream that declares version 0.2",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->insert(s->begin() + kComp, AppearancePacket(0.01f));
+         (*s)[kSeq][24 + 1] = 2;
+         FixCrcs(&(*s)[kSeq]);
+       }},
+      {"appearance_step_zero", "M4D_ERR_BITSTREAM", "an APPEARANCE with step 0",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->insert(s->begin() + kComp, AppearancePacket(0.0f));
+       }},
+      {"appearance_values_short", "M4D_ERR_BITSTREAM",
+       "an APPEARANCE with values for 79 of the 80 dynamic Gaussians",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->insert(s->begin() + kComp, AppearancePacket(0.01f, 3 * 79));
+       }},
+      {"appearance_after_compensation", "M4D_ERR_BITSTREAM",
+       "an APPEARANCE after frame 1's COMPENSATION",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet p = AppearancePacket(0.01f);
+         p[8] = 2;  // frame 2's MOTION_GRID follows: the packet ends frame 1's numbering
+         FixCrcs(&p);
+         s->insert(s->begin() + kComp + 1, p);
+       }},
       {"compensation_without_motion_grid", "M4D_ERR_BITSTREAM", "frame 1's MOTION_GRID missing",
        [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kMotion); }},
       {"missing_end_of_frame", "M4D_ERR_BITSTREAM",

@@ -20,10 +20,11 @@
 namespace {
 
 const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
-                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE"};
+                            "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE",
+                            "APPEARANCE"};
 
 const char* TypeName(uint32_t type) {
-  return type <= M4D_PACKET_STATIC_UPDATE ? kTypeNames[type] : "unknown";
+  return type <= M4D_PACKET_APPEARANCE ? kTypeNames[type] : "unknown";
 }
 
 struct PacketRow {

@@ -37,7 +37,24 @@ struct Options {
   bool dependent_gops = false;
   float static_change = 0.0f;
   int bitstream_minor = M4D_BITSTREAM_VERSION_MINOR;  // 2: a version 0.2 stream
+  // Inter frames after the first of a GOP change the colour of this share of the dynamic
+  // Gaussians with an APPEARANCE (bitstream 0.3; 0: none).
+  float appearance_fraction = 0.0f;
 };
+
+// Colour changes of a share of the set (APPEARANCE values): small signed steps, zero elsewhere.
+std::vector<int32_t> SyntheticAppearance(size_t n, float share, uint64_t seed) {
+  m4d::SyntheticRandom rng(seed);
+  std::vector<int32_t> values(3 * n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (rng.Uniform() >= share) continue;
+    for (int c = 0; c < 3; ++c) values[3 * i + c] = static_cast<int32_t>(rng.Next() % 81) - 40;
+  }
+  return values;
+}
+
+// Not a power of two: a decoder that adds the value before scaling it gets other floats.
+constexpr float kSyntheticAppearanceStep = 0.0123f;
 
 // A dependent keyframe's change of the static set: every k-th Gaussian removed, and a few more
 // added than removed (so that both the in-place replacement and the append of 6.4 occur).
@@ -62,6 +79,10 @@ bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
   wo->sequence.version_minor = opt.bitstream_minor;
   if (opt.dependent_gops && opt.bitstream_minor < 3) {
     std::fprintf(stderr, "m4d_synth: dependent GOPs need bitstream 0.3\n");
+    return false;
+  }
+  if (opt.appearance_fraction > 0.0f && opt.bitstream_minor < 3) {
+    std::fprintf(stderr, "m4d_synth: appearance updates need bitstream 0.3\n");
     return false;
   }
   wo->sequence.num_frames = static_cast<uint32_t>(opt.gops * opt.frames_per_gop);
@@ -105,8 +126,8 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
   if (!StreamOptions(opt, &wo)) return false;
   StreamWriter writer(wo);
   const float center[3] = {0, 0, 0}, fg_center[3] = {0.2f, 0.1f, 0};
-  std::printf("%6s %4s %12s %12s %10s %10s %10s\n", "frame", "type", "static B", "dynamic B",
-              "mlp B", "motion B", "comp B");
+  std::printf("%6s %4s %12s %12s %10s %10s %12s %10s\n", "frame", "type", "static B", "dynamic B",
+              "mlp B", "motion B", "appearance B", "comp B");
   for (int g = 0; g < opt.gops; ++g) {
     const uint64_t seed = opt.seed * 1000 + g;
     GaussianSet bg = SyntheticGaussianSet(opt.static_count, opt.sh_degree, seed, center, 3.0f);
@@ -125,6 +146,12 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
       } else {
         status = writer.WriteMotion(
             SyntheticMotionGrid(wo.sequence.grid, seed * 31 + f, -1.0f, 1.0f, opt.motion_fraction));
+        if (status.ok() && opt.appearance_fraction > 0.0f && f > 1) {
+          status =
+              writer.WriteAppearance(kSyntheticAppearanceStep,
+                                     SyntheticAppearance(writer.moved_dynamic_set().size(),
+                                                         opt.appearance_fraction, seed * 13 + f));
+        }
         if (status.ok()) {
           // Replace about 1% of the dynamic Gaussians each frame.
           const size_t n = writer.moved_dynamic_set().size();
@@ -141,12 +168,12 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
       }
       hashes->push_back(FrameHashHex(recon));
       const auto& b = writer.last_frame_bytes().by_type;
-      std::printf("%6u %4s %12zu %12zu %10zu %10zu %10zu\n", recon.frame_index,
+      std::printf("%6u %4s %12zu %12zu %10zu %10zu %12zu %10zu\n", recon.frame_index,
                   f == 0 ? "key" : "inter",
                   b[M4D_PACKET_KEYFRAME_STATIC] + b[M4D_PACKET_SEQUENCE_HEADER] +
                       b[M4D_PACKET_STATIC_UPDATE],
                   b[M4D_PACKET_KEYFRAME_DYNAMIC], b[M4D_PACKET_MLP_WEIGHTS],
-                  b[M4D_PACKET_MOTION_GRID], b[M4D_PACKET_COMPENSATION]);
+                  b[M4D_PACKET_MOTION_GRID], b[M4D_PACKET_APPEARANCE], b[M4D_PACKET_COMPENSATION]);
     }
   }
   *bytes = writer.bytes();
@@ -219,6 +246,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));
+  app.add_option("--appearance-fraction", opt.appearance_fraction,
+                 "share of the dynamic Gaussians whose colour an APPEARANCE changes in each inter "
+                 "frame but a GOP's first (0: none; bitstream 0.3)")
+      ->check(CLI::Range(0.0f, 1.0f));
   M4D_PARSE_ARGUMENTS(app, argc, argv);
 
   std::vector<uint8_t> bytes;

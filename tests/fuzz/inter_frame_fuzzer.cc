@@ -1,8 +1,9 @@
 // libFuzzer target for the set-changing layer decoders in context: a real keyframe and motion
 // grid are decoded first, then the input is the payload of frame 1's MOTION_GRID (first byte
-// 0 mod 3) or COMPENSATION (1 mod 3), or of the STATIC_UPDATE of a dependent keyframe at
-// frame 2 (2 mod 3, followed by that keyframe's valid KEYFRAME_DYNAMIC and MLP_WEIGHTS), sent
-// with valid CRCs so that it reaches the parsers, the motion application and the merges.
+// 0 mod 4) or COMPENSATION (1 mod 4), of the STATIC_UPDATE of a dependent keyframe at frame 2
+// (2 mod 4, followed by that keyframe's valid KEYFRAME_DYNAMIC and MLP_WEIGHTS), or of an
+// APPEARANCE between frame 1's valid MOTION_GRID and COMPENSATION (3 mod 4), sent with valid
+// CRCs so that it reaches the parsers, the motion and appearance application and the merges.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -28,7 +29,7 @@ const std::vector<m4d::testing::Packet>& Prefix() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  const int mode = data[0] % 3;
+  const int mode = data[0] % 4;
   if (mode == 2) {
     std::vector<m4d::testing::Packet> packets = Prefix();
     for (uint8_t type :
@@ -40,6 +41,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       m4d::AppendPacket(type, 2, type == M4D_PACKET_MLP_WEIGHTS, fuzzed ? data + 1 : &from[24],
                         fuzzed ? size - 1 : from.size() - 24, &packets.back());
     }
+    m4d::testing::DecodeWith(m4d::testing::DefaultSettings(), packets);
+    return 0;
+  }
+  if (mode == 3) {
+    std::vector<m4d::testing::Packet> packets(Prefix().begin(), Prefix().begin() + 5);
+    packets.emplace_back();
+    m4d::AppendPacket(M4D_PACKET_APPEARANCE, 1, false, data + 1, size - 1, &packets.back());
+    packets.push_back(Prefix()[5]);
     m4d::testing::DecodeWith(m4d::testing::DefaultSettings(), packets);
     return 0;
   }

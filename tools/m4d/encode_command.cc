@@ -145,6 +145,15 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "code a frame's motion only when it raises the training views' PSNR by more "
                   "than this many dB over showing the previous frame again (negative: always)")
       ->capture_default_str();
+  cmd->add_option("--appearance-step", o.motion.appearance_step,
+                  "quantization step of the dynamic Gaussians' colour change per inter frame, in "
+                  "SH DC units (0: colours stay the keyframe's for the whole GOP, as the paper)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--appearance-min-gain", o.appearance_min_gain,
+                  "code a frame's colour change only when it raises the training views' PSNR by "
+                  "more than this many dB (negative: always)")
+      ->capture_default_str();
   cmd->add_flag("!--no-noise-gap", o.gop.noise_gap,
                 "the quality guard compares with the keyframe's training PSNR itself, not less "
                 "its noise gap");
@@ -272,6 +281,8 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
           {"motion_min_gain", o.motion_min_gain},
+          {"appearance_step", o.motion.appearance_step},
+          {"appearance_min_gain", o.appearance_min_gain},
           {"change_support", o.decoupling.thresholds.change_support},
           {"noise_gap", o.gop.noise_gap},
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},

@@ -23,6 +23,7 @@ const std::vector<ReportLayer>& ReportLayers() {
       {M4D_PACKET_KEYFRAME_DYNAMIC, "dynamic", "dynamic key"},
       {M4D_PACKET_MLP_WEIGHTS, "mlp", "MLP weights"},
       {M4D_PACKET_MOTION_GRID, "motion_grid", "motion grids"},
+      {M4D_PACKET_APPEARANCE, "appearance", "appearance"},
       {M4D_PACKET_COMPENSATION, "compensation", "compensation"}};
   return kLayers;
 }
@@ -77,19 +78,21 @@ std::string Measure(const FrameReport& f, double value, int decimals) {
 
 void PrintFrameLine(std::FILE* out, const FrameReport& f, bool header) {
   if (header) {
-    std::fprintf(out, "%5s %4s %9s %9s %7s %8s %8s %9s %8s %8s %6s %6s %7s %6s %7s %7s\n", "frame",
-                 "type", "static KB", "dyn KB", "mlp KB", "grid KB", "comp KB", "total KB",
-                 "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "train", "time s");
+    std::fprintf(out, "%5s %4s %9s %9s %7s %8s %7s %8s %9s %8s %8s %6s %6s %7s %6s %7s %7s\n",
+                 "frame", "type", "static KB", "dyn KB", "mlp KB", "grid KB", "app KB", "comp KB",
+                 "total KB", "static", "dynamic", "+add", "-rem", "PSNR", "SSIM", "train",
+                 "time s");
   }
   std::fprintf(
-      out, "%5u %4s %9.2f %9.2f %7.2f %8.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7s %6s %7.2f %7.1f\n",
+      out,
+      "%5u %4s %9.2f %9.2f %7.2f %8.2f %7.2f %8.2f %9.2f %8zu %8zu %6zu %6zu %7s %6s %7.2f %7.1f\n",
       f.frame_index, f.keyframe ? (f.random_access ? "key" : "dkey") : "inter",
       Kb(Layer(f, M4D_PACKET_KEYFRAME_STATIC) + Layer(f, M4D_PACKET_STATIC_UPDATE)),
       Kb(Layer(f, M4D_PACKET_KEYFRAME_DYNAMIC)), Kb(Layer(f, M4D_PACKET_MLP_WEIGHTS)),
-      Kb(Layer(f, M4D_PACKET_MOTION_GRID)), Kb(Layer(f, M4D_PACKET_COMPENSATION)),
-      Kb(f.bytes.total()), f.static_count, f.dynamic_count, f.added, f.removed,
-      Measure(f, f.psnr, 2).c_str(), Measure(f, f.ssim, 4).c_str(), f.training_psnr,
-      f.seconds.total());
+      Kb(Layer(f, M4D_PACKET_MOTION_GRID)), Kb(Layer(f, M4D_PACKET_APPEARANCE)),
+      Kb(Layer(f, M4D_PACKET_COMPENSATION)), Kb(f.bytes.total()), f.static_count, f.dynamic_count,
+      f.added, f.removed, Measure(f, f.psnr, 2).c_str(), Measure(f, f.ssim, 4).c_str(),
+      f.training_psnr, f.seconds.total());
   std::fflush(out);
 }
 
@@ -141,6 +144,8 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                       {"compensation_gain", f.compensation_gain},
                       {"motion_gain", f.motion_gain},
                       {"motion_skipped", f.motion_skipped},
+                      {"appearance_gain", f.appearance_gain},
+                      {"appearance_skipped", f.appearance_skipped},
                       {"psnr_reference", f.psnr_reference},
                       {"prediction_psnr", f.prediction_psnr},
                       {"seeded", f.seeded},

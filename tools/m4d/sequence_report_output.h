@@ -34,7 +34,7 @@ struct SequenceSummary {
   double seconds = 0;                  // all stages, all frames
   double seconds_per_inter_frame = 0;  // motion + compensation + coding + evaluation
   // Where the bytes go: KB per frame (all frames) by packet type, headers included.
-  std::array<double, 8> kb_per_frame_by_type{};
+  std::array<double, 9> kb_per_frame_by_type{};
 };
 
 SequenceSummary Summarise(const SequenceReport& report);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "motion/appearance_estimation.h"
 #include "render/splat_renderer.h"
 #include "train/adam_optimizer.h"
 #include "train/training_random.h"
@@ -30,12 +31,13 @@ struct TensorAdam {
   }
 };
 
-// The dynamic set with moved positions and rotations, for rendering.
+// The dynamic set with moved positions and rotations (and changed colours), for rendering.
 GaussianLayerView MovedView(const GaussianSet& set, const std::vector<float>& positions,
-                            const std::vector<float>& rotations) {
+                            const std::vector<float>& rotations, const float* sh) {
   GaussianLayerView view = LayerView(set);
   view.positions = positions.data();
   view.rotations = rotations.data();
+  if (sh) view.sh = sh;
   return view;
 }
 
@@ -165,7 +167,14 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   MotionField field;
   double color_sum = 0;
   int color_count = 0;
-  std::vector<float> sum_p(3 * n), sum_q(4 * n);
+  std::vector<float> sum_p(3 * n), sum_q(4 * n), sum_dc(3 * n);
+  std::unique_ptr<AppearanceEstimation> appearance;
+  if (options.appearance_step > 0) {
+    appearance = std::make_unique<AppearanceEstimation>(n, options.appearance_step,
+                                                        options.appearance_learning_rate,
+                                                        options.entropy_learning_rate);
+  }
+  const size_t sh_stride = static_cast<size_t>(dynamic_set.sh_floats());
   const int batch = std::clamp(options.views_per_step, 1, views.size());
   for (int it = 0; it < options.iterations; ++it) {
     // The grid's rate decays tenfold over the frame: fast to the motion, then settled.
@@ -180,11 +189,15 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
     noisy.mlp = params.mlp;
     field.Forward(config_, steps_, stencil, noisy, dynamic_set.positions.data(),
                   dynamic_set.rotations.data(), moved_p.data(), moved_q.data());
+    const float* sh = appearance
+                          ? appearance->NoisySh(dynamic_set, options.simulate_quantization, &rng)
+                          : nullptr;
     const GaussianLayerView layers[2] = {LayerView(static_set),
-                                         MovedView(dynamic_set, moved_p, moved_q)};
+                                         MovedView(dynamic_set, moved_p, moved_q, sh)};
     // L_color is the mean over the step's views: their gradients are averaged.
     std::fill(sum_p.begin(), sum_p.end(), 0.0f);
     std::fill(sum_q.begin(), sum_q.end(), 0.0f);
+    std::fill(sum_dc.begin(), sum_dc.end(), 0.0f);
     for (int b = 0; b < batch; ++b) {
       if (cursor == order.size()) {
         order.resize(views.size());
@@ -210,6 +223,10 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
       const float w = 1.0f / static_cast<float>(batch);
       for (size_t k = 0; k < sum_p.size(); ++k) sum_p[k] += w * d_p[k];
       for (size_t k = 0; k < sum_q.size(); ++k) sum_q[k] += w * d_q[k];
+      if (appearance) {
+        for (size_t k = 0; k < sum_dc.size(); ++k)
+          sum_dc[k] += w * d_sh[(k / 3) * sh_stride + k % 3];
+      }
     }
     ZeroParameters(&grad);
     field.Backward(sum_p.data(), sum_q.data(), &grad);
@@ -219,6 +236,10 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);
+    if (appearance) {
+      const double rate = options.rate_term ? options.rate_weight / kBitsPerRateUnit : 0.0;
+      appearance->Step(sum_dc.data(), rate, decay);
+    }
     if (options.train_mlp) {
       for (size_t j = 0; j < params.mlp.layers.size(); ++j) {
         mlp_adam[2 * j]->Step(&params.mlp.layers[j].weights, grad.mlp.layers[j].weights);
@@ -238,6 +259,13 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   for (size_t m = 0; m < field.moved().size(); ++m) {
     std::memcpy(&result->motion[7 * field.moved()[m]], &out(0, static_cast<Eigen::Index>(m)),
                 7 * sizeof(float));
+  }
+  if (appearance) {
+    result->appearance = appearance->Rounded();
+    result->appearance_bits = appearance->Bits(result->appearance);
+  } else {
+    result->appearance.clear();
+    result->appearance_bits = 0;
   }
   if (options.train_mlp) mlp_ = params.mlp;
   for (int l = 0; l < config_.num_levels; ++l) {

@@ -50,6 +50,11 @@ struct MotionEstimationOptions {
   bool rate_term = true;              // off: L_s2 = L_color (ablation)
   bool train_mlp = false;             // the first inter frame of a GOP
   bool warm_start = true;             // start from the previous frame's grid
+  // The dynamic set's colour change (APPEARANCE, appearance_estimation.h), trained with the
+  // motion: its quantization step in SH DC units (0: none) and its learning rate in steps
+  // per iteration (Adam), decaying like the grid's.
+  float appearance_step = 1.0f / 64.0f;
+  float appearance_learning_rate = 0.5f;
   double ssim_weight = kDefaultSsimWeight;
   int sh_degree = 3;
   float background[3] = {0, 0, 0};
@@ -65,7 +70,11 @@ struct MotionEstimationResult {
   // Per Gaussian of the dynamic set: the 7 motion outputs with the rounded grid (zero for
   // Gaussians outside the box), for the splitting of compensation.
   std::vector<float> motion;
-  double rate_bits = 0;   // entropy-model estimate of the rounded grid, in bits
+  double rate_bits = 0;  // entropy-model estimate of the rounded grid, in bits
+  // With an appearance step: the colour change, 3 integers per Gaussian of the dynamic set
+  // (in steps), and their estimated bits; empty without.
+  std::vector<int32_t> appearance;
+  double appearance_bits = 0;
   double color_loss = 0;  // mean L_color over the last pass through the views
 };
 

@@ -92,6 +92,9 @@ struct EncoderOptions {
   // the training views' mean PSNR above the unmoved dynamic set's by more than this many dB;
   // otherwise it shows the previous frame's Gaussians again (SequenceEncoder::DecideMotion).
   double motion_min_gain = 0.0;
+  // And the colour change (APPEARANCE) trained with the motion: coded only when it raises the
+  // training views' mean PSNR of the moved set by more than this many dB.
+  double appearance_min_gain = 0.0;
   GopOptions gop;
   AblationSwitches ablation;
   // Baseline, not the paper's method: every frame a keyframe trained from scratch on its own

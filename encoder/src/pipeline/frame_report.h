@@ -45,6 +45,11 @@ struct FrameReport {
   // (motion_skipped).
   double motion_gain = 0;
   bool motion_skipped = false;
+  // Training views' PSNR of the moved set with its colour change minus without it (dB; inter
+  // frames whose motion trained one). Not above EncoderOptions::appearance_min_gain: no
+  // APPEARANCE is coded (appearance_skipped).
+  double appearance_gain = 0;
+  bool appearance_skipped = true;
   // What the adaptive GOP's quality guard compares training_psnr with (dB, inter frames): the
   // keyframe's training PSNR less its noise gap (SequenceEncoder::NoiseGap).
   double psnr_reference = 0;

@@ -10,6 +10,7 @@
 #include "common/byte_writer.h"
 #include "compensation/compensation_candidates.h"
 #include "compensation/compensation_training.h"
+#include "decode/appearance_application.h"
 #include "decode/frame_hash.h"
 #include "decode/motion_application.h"
 #include "decoupling/lookahead_decoupling.h"
@@ -453,6 +454,12 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
              &coded_grid, &decoded_grid);
   GaussianSet moved = gop.dynamic_set;
   ApplyMotion(options_.grid, decoded_grid, gop.decoded_mlp, &moved);
+  AppearanceUpdate appearance;
+  if (motion_on && !motion.appearance.empty()) {
+    appearance.step = options_.motion.appearance_step;
+    appearance.values.assign(motion.appearance.begin(), motion.appearance.end());
+    M4D_RETURN_IF_ERROR(DecideAppearance(views, gop.static_set, appearance, &moved, &report));
+  }
   if (motion_on) {
     bool skip = false;
     M4D_RETURN_IF_ERROR(
@@ -461,6 +468,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
       SkipMotion(&coded_grid);
       moved = gop.dynamic_set;
       std::fill(motion.motion.begin(), motion.motion.end(), 0.0f);
+      report.appearance_skipped = true;
     }
   }
   report.seconds.motion = Since(start);
@@ -512,6 +520,9 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   if (gop.keyframe_pending) M4D_RETURN_IF_ERROR(WriteKeyframe());
   start = Clock::now();
   M4D_RETURN_IF_ERROR(writer_->WriteMotion(coded_grid));
+  if (!report.appearance_skipped) {
+    M4D_RETURN_IF_ERROR(writer_->WriteAppearance(appearance.step, motion.appearance));
+  }
   if (!SameSet(writer_->moved_dynamic_set(), moved)) {
     return Status(M4D_ERR_BITSTREAM, "encoder: moved set differs from the decoder's");
   }
@@ -644,6 +655,20 @@ Status SequenceEncoder::DecideMotion(const TrainingViews& views, const GaussianS
   report->motion_gain = with - without;
   *skip = !(report->motion_gain > options_.motion_min_gain);
   report->motion_skipped = *skip;
+  return Status::Ok();
+}
+
+Status SequenceEncoder::DecideAppearance(const TrainingViews& views, const GaussianSet& static_set,
+                                         const AppearanceUpdate& appearance, GaussianSet* moved,
+                                         FrameReport* report) {
+  GaussianSet changed = *moved;
+  ApplyAppearanceUpdate(appearance, &changed);
+  double with = 0, without = 0;
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, changed, &with));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, *moved, &without));
+  report->appearance_gain = with - without;
+  report->appearance_skipped = !(report->appearance_gain > options_.appearance_min_gain);
+  if (!report->appearance_skipped) *moved = std::move(changed);
   return Status::Ok();
 }
 

@@ -23,6 +23,7 @@
 #include "common/status.h"
 #include "dataset/capture.h"
 #include "image/image.h"
+#include "layers/appearance_update.h"
 #include "motion/motion_estimation.h"
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
@@ -111,6 +112,11 @@ class SequenceEncoder {
   Status DecideMotion(const TrainingViews& views, const GaussianSet& static_set,
                       const GaussianSet& still, const GaussianSet& moved, bool* skip,
                       FrameReport* report);
+  // Applies the frame's colour change to *moved when it raises the training views' PSNR by
+  // more than options_.appearance_min_gain (sets report's appearance gain and skip flag).
+  Status DecideAppearance(const TrainingViews& views, const GaussianSet& static_set,
+                          const AppearanceUpdate& appearance, GaussianSet* moved,
+                          FrameReport* report);
   // Sets report's training PSNR and compensation gain; drops the compensation (nothing added
   // or removed) when it gains less than options_.compensation_min_gain.
   Status DecideCompensation(const TrainingViews& views, const GaussianSet& static_set,

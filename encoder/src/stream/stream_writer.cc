@@ -6,6 +6,7 @@
 #include "common/byte_writer.h"
 #include "common/spec_limits.h"
 #include "entropy/symbol_block_writer.h"
+#include "layers/appearance_update_writer.h"
 #include "layers/mlp_writer.h"
 #include "stream/sequence_header_writer.h"
 
@@ -116,6 +117,21 @@ Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
   return Status::Ok();
 }
 
+Status StreamWriter::WriteAppearance(float step, const std::vector<int32_t>& values) {
+  if (!motion_written_ || appearance_written_) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: appearance needs motion and no appearance yet");
+  }
+  if (values.size() != 3 * moved_dynamic_set().size()) {
+    return Status(M4D_ERR_INVALID_ARG, "writer: appearance values do not match the dynamic set");
+  }
+  std::vector<uint8_t> payload;
+  ByteWriter writer(&payload);
+  M4D_RETURN_IF_ERROR(WriteAppearanceUpdate(step, values, &writer));
+  M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_APPEARANCE, false, payload));
+  appearance_written_ = true;
+  return Status::Ok();
+}
+
 Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,
                                        const GaussianSet& added, DecodedFrame* recon) {
   if (!motion_written_) return Status(M4D_ERR_INVALID_ARG, "writer: compensation before motion");
@@ -129,6 +145,7 @@ Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,
   M4D_RETURN_IF_ERROR(WriteSetChange(removed, added, options_.compensation_quantization, &payload));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_COMPENSATION, true, payload));
   motion_written_ = false;
+  appearance_written_ = false;
   return TakeReconstruction(recon);
 }
 

@@ -32,7 +32,7 @@ struct SetChange {
 
 // Bytes written per packet type (index = M4dPacketType), packet headers included.
 struct PacketBytes {
-  std::array<size_t, 8> by_type{};
+  std::array<size_t, 9> by_type{};
   size_t total() const {
     size_t t = 0;
     for (size_t b : by_type) t += b;
@@ -63,7 +63,11 @@ class StreamWriter {
   Status WriteMotion(const FloatMotionGrid& grid);
   const GaussianSet& moved_dynamic_set() const { return *decoder_.dynamic_set(); }
 
-  // Second packet of an inter frame: `removed` holds one flag per Gaussian of
+  // Optional packet after the motion (bitstream 0.3): the colour change of the moved dynamic
+  // set, `values` 3 per Gaussian of moved_dynamic_set(), which it changes.
+  Status WriteAppearance(float step, const std::vector<int32_t>& values);
+
+  // Last packet of an inter frame: `removed` holds one flag per Gaussian of
   // moved_dynamic_set() (non-zero = remove), `added` the compensated Gaussians.
   Status WriteCompensation(const std::vector<uint8_t>& removed, const GaussianSet& added,
                            DecodedFrame* recon);
@@ -90,6 +94,7 @@ class StreamWriter {
   uint32_t next_frame_ = 0;
   bool gop_open_ = false;
   bool motion_written_ = false;
+  bool appearance_written_ = false;
 };
 
 }  // namespace m4d

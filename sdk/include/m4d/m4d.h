@@ -77,7 +77,8 @@ typedef enum M4dPacketType {
   M4D_PACKET_MLP_WEIGHTS = 4,
   M4D_PACKET_MOTION_GRID = 5,
   M4D_PACKET_COMPENSATION = 6,
-  M4D_PACKET_STATIC_UPDATE = 7 /* bitstream 0.3: the static set's change at a dependent keyframe */
+  M4D_PACKET_STATIC_UPDATE = 7, /* bitstream 0.3: the static set's change at a dependent keyframe */
+  M4D_PACKET_APPEARANCE = 8 /* bitstream 0.3: the dynamic set's colour change at an inter frame */
 } M4dPacketType;
 
 /* Log levels passed to M4dLogger.callback. */

@@ -34,6 +34,7 @@ struct SequenceHeader {
 
   // Dependent keyframes and STATIC_UPDATE exist from 0.3 on.
   bool allows_dependent_gops() const { return version_minor >= 3; }
+  bool allows_appearance() const { return version_minor >= 3; }
 };
 
 // Reads and validates a SEQUENCE_HEADER payload (the whole payload must be consumed).

@@ -6,9 +6,11 @@
 #include "common/byte_reader.h"
 #include "common/crc32.h"
 #include "common/spec_limits.h"
+#include "decode/appearance_application.h"
 #include "decode/compensation_merge.h"
 #include "decode/motion_application.h"
 #include "entropy/symbol_block_reader.h"
+#include "layers/appearance_update.h"
 #include "layers/gaussian_set_reader.h"
 
 namespace m4d {
@@ -30,6 +32,8 @@ const char* PacketName(uint8_t type) {
       return "COMPENSATION";
     case M4D_PACKET_STATIC_UPDATE:
       return "STATIC_UPDATE";
+    case M4D_PACKET_APPEARANCE:
+      return "APPEARANCE";
     default:
       return "unknown";
   }
@@ -121,8 +125,17 @@ Status Decoder::CheckOrder(const PacketHeader& h) {
       if (stage_ != Stage::kInter) return order_error("not after a complete frame");
       if (h.frame_index != frame_index_ + 1) return order_error("frame index not consecutive");
       return Status::Ok();
-    case M4D_PACKET_COMPENSATION:
+    case M4D_PACKET_APPEARANCE:
+      if (!sequence_.allows_appearance()) {
+        return order_error("an appearance update in a version 0." +
+                           std::to_string(sequence_.version_minor) + " stream");
+      }
       if (stage_ != Stage::kMotion) return order_error("not after MOTION_GRID");
+      break;
+    case M4D_PACKET_COMPENSATION:
+      if (stage_ != Stage::kMotion && stage_ != Stage::kAppearance) {
+        return order_error("not after MOTION_GRID or APPEARANCE");
+      }
       break;
     default:
       return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
@@ -147,7 +160,7 @@ Status Decoder::CheckDependentKeyframe(const PacketHeader& h) const {
 }
 
 Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
-  if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_STATIC_UPDATE) {
+  if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_APPEARANCE) {
     return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
   }
   if (h.type != M4D_PACKET_SEQUENCE_HEADER && stage_ == Stage::kNeedSequenceHeader) {
@@ -201,6 +214,10 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
       if (decode) M4D_RETURN_IF_ERROR(DecodeMotion(payload, size));
       frame_index_ = h.frame_index;
       stage_ = Stage::kMotion;
+      return Status::Ok();
+    case M4D_PACKET_APPEARANCE:
+      if (decode) M4D_RETURN_IF_ERROR(DecodeAppearance(payload, size));
+      stage_ = Stage::kAppearance;
       return Status::Ok();
     default:  // M4D_PACKET_COMPENSATION (CheckOrder rejected every other type)
       if (decode) M4D_RETURN_IF_ERROR(DecodeCompensation(payload, size));
@@ -283,6 +300,16 @@ Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   if (!status.ok()) return Status(status.code(), "MOTION_GRID: " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MOTION_GRID"));
   ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet(), pool_.get());
+  return Status::Ok();
+}
+
+Status Decoder::DecodeAppearance(const uint8_t* payload, size_t size) {
+  ByteReader reader(payload, size);
+  AppearanceUpdate update(options_.allocator);
+  Status status = ReadAppearanceUpdate(&reader, static_cast<uint32_t>(dynamic_->size()), &update);
+  if (!status.ok()) return Status(status.code(), "APPEARANCE: " + status.message());
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "APPEARANCE"));
+  ApplyAppearanceUpdate(update, MutableDynamicSet());
   return Status::Ok();
 }
 

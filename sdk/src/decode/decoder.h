@@ -85,7 +85,8 @@ class Decoder {
     kKeyframeStatic,
     kKeyframeDynamic,
     kInter,
-    kMotion
+    kMotion,
+    kAppearance
   };
 
   Status Dispatch(const PacketHeader& header, const uint8_t* payload);
@@ -95,6 +96,7 @@ class Decoder {
   Status DecodeStaticUpdate(const uint8_t* payload, size_t size);
   Status DecodeMlp(const uint8_t* payload, size_t size);
   Status DecodeMotion(const uint8_t* payload, size_t size);
+  Status DecodeAppearance(const uint8_t* payload, size_t size);
   Status DecodeCompensation(const uint8_t* payload, size_t size);
   // The syntax shared by COMPENSATION and STATIC_UPDATE (spec 4.5, 4.6) over a set of n.
   Status ReadSetChange(const uint8_t* payload, size_t size, const char* what, uint32_t n,
