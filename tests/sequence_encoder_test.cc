@@ -360,6 +360,7 @@ TEST(SequenceEncoderTest, AppearanceIsCodedOnlyWhereItGains) {
   for (double min_gain : {-1.0, 1e9}) {
     EncoderOptions o = SmallOptions();
     o.appearance_min_gain = min_gain;
+    o.appearance_min_views = 1;  // the capture has 5 training views
     o.gop.adaptive = false;
     o.frame_count = kCodedFrames;
     o.ablation.decoupling = false;
@@ -375,6 +376,17 @@ TEST(SequenceEncoderTest, AppearanceIsCodedOnlyWhereItGains) {
       EXPECT_EQ(frame.appearance_skipped, min_gain > 0) << f;
       EXPECT_EQ(frame.bytes.by_type[M4D_PACKET_APPEARANCE] > 0, !frame.appearance_skipped) << f;
     }
+  }
+  // With fewer training views than the default bound none is trained.
+  EncoderOptions o = SmallOptions();
+  o.gop.adaptive = false;
+  o.frame_count = kCodedFrames;
+  SequenceEncoder encoder(capture, o);
+  SequenceReport report;
+  ASSERT_TRUE(encoder.Encode(EncoderCallbacks(), &report).ok());
+  for (int f = 1; f < kCodedFrames; ++f) {
+    EXPECT_TRUE(report.frames[f].appearance_skipped) << f;
+    EXPECT_EQ(report.frames[f].appearance_gain, 0.0) << f;
   }
 }
 

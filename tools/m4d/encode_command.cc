@@ -154,6 +154,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "code a frame's colour change only when it raises the training views' PSNR by "
                   "more than this many dB (negative: always)")
       ->capture_default_str();
+  cmd->add_option("--appearance-min-views", o.appearance_min_views,
+                  "train the colour change only with at least this many training views")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag("!--no-noise-gap", o.gop.noise_gap,
                 "the quality guard compares with the keyframe's training PSNR itself, not less "
                 "its noise gap");
@@ -283,6 +287,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"motion_min_gain", o.motion_min_gain},
           {"appearance_step", o.motion.appearance_step},
           {"appearance_min_gain", o.appearance_min_gain},
+          {"appearance_min_views", o.appearance_min_views},
           {"change_support", o.decoupling.thresholds.change_support},
           {"noise_gap", o.gop.noise_gap},
           {"adaptive_gop", o.gop.adaptive && o.gop.fixed_length == 0},

@@ -436,6 +436,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     o.train_mlp = !gop.mlp_trained;
     if (o.train_mlp) o.iterations = options_.first_motion_iterations;
     o.rate_term = options_.ablation.rate_term && o.rate_term;
+    if (views.size() < options_.appearance_min_views) o.appearance_step = 0.0f;
     o.sh_degree = options_.sh_degree;
     o.threads = options_.threads;
     o.seed = options_.seed + 7919u * static_cast<uint64_t>(frame);
