@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -248,6 +251,31 @@ TEST(MotionFieldTest, ZeroMotionAtZeroFeaturesKeepsTheSlopes) {
     }
   }
   EXPECT_GT(before.outputs.back().norm(), 0.1f);  // the random biases did move zero features
+}
+
+// The encoder's output must not depend on where the heap puts its vectors (it once changed
+// with the length of the output path): the bias gradient of a 32-byte aligned vector and of a
+// vector 16 bytes off it are bit-identical.
+TEST(MotionFieldTest, MlpGradientsDoNotDependOnTheirAlignment) {
+  const int features = 10;
+  const MlpWeights mlp = InitialMotionMlp(features, MlpConfig{1, 64}, 1.0f, 7);
+  const Eigen::MatrixXf x = Eigen::MatrixXf::Random(features, 75);
+  MlpBatch batch;
+  MlpForward(mlp, x, &batch);
+  const Eigen::MatrixXf d_outputs = Eigen::MatrixXf::Random(7, 75);
+  std::vector<std::unique_ptr<MlpWeights>> grads;
+  MlpWeights* by_offset[2] = {nullptr, nullptr};  // biases at 0 and 16 bytes mod 32
+  for (int attempt = 0; attempt < 256 && !(by_offset[0] && by_offset[1]); ++attempt) {
+    grads.push_back(std::make_unique<MlpWeights>(ZeroLike(mlp)));
+    const auto address = reinterpret_cast<uintptr_t>(grads.back()->layers[0].biases.data());
+    if (address % 16 == 0) by_offset[(address % 32) / 16] = grads.back().get();
+  }
+  ASSERT_TRUE(by_offset[0] && by_offset[1]) << "the heap gave no vector at both alignments";
+  for (MlpWeights* grad : by_offset) MlpBackward(mlp, x, batch, d_outputs, grad, nullptr);
+  const std::vector<float>& aligned = by_offset[0]->layers[0].biases;
+  const std::vector<float>& shifted = by_offset[1]->layers[0].biases;
+  ASSERT_EQ(aligned.size(), shifted.size());
+  EXPECT_EQ(0, std::memcmp(aligned.data(), shifted.data(), aligned.size() * sizeof(float)));
 }
 
 TEST(RigidUpdateTest, BackwardMatchesFiniteDifferences) {

@@ -72,7 +72,10 @@ void MlpBackward(const MlpWeights& mlp, const Eigen::MatrixXf& features, const M
     MlpLayer& g = grad->layers[j];
     Eigen::Map<RowMajor>(g.weights.data(), layer.outputs, layer.inputs).noalias() +=
         d * input.transpose();
-    Eigen::Map<Eigen::VectorXf>(g.biases.data(), layer.outputs) += d.rowwise().sum();
+    // Into an aligned vector first: a row sum assigned straight into the (16-byte aligned)
+    // vector sums its first rows in another order than the rest, by where the heap put it.
+    const Eigen::VectorXf d_biases = d.rowwise().sum();
+    Eigen::Map<Eigen::VectorXf>(g.biases.data(), layer.outputs) += d_biases;
     if (j == 0 && d_features == nullptr) break;
     Eigen::MatrixXf d_input = Weights(layer).transpose() * d;
     if (j > 0) {
