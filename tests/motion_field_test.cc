@@ -270,7 +270,8 @@ TEST(MotionFieldTest, MlpGradientsDoNotDependOnTheirAlignment) {
     const auto address = reinterpret_cast<uintptr_t>(grads.back()->layers[0].biases.data());
     if (address % 16 == 0) by_offset[(address % 32) / 16] = grads.back().get();
   }
-  ASSERT_TRUE(by_offset[0] && by_offset[1]) << "the heap gave no vector at both alignments";
+  // glibc's malloc alternates; AddressSanitizer's puts these vectors on 32-byte multiples only.
+  if (!(by_offset[0] && by_offset[1])) GTEST_SKIP() << "the allocator gives one alignment only";
   for (MlpWeights* grad : by_offset) MlpBackward(mlp, x, batch, d_outputs, grad, nullptr);
   const std::vector<float>& aligned = by_offset[0]->layers[0].biases;
   const std::vector<float>& shifted = by_offset[1]->layers[0].biases;
