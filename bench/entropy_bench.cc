@@ -44,7 +44,8 @@ std::vector<int32_t> MostlyZero(size_t count, uint32_t seed) {
 std::vector<uint8_t> Encode(const std::vector<int32_t>& values) {
   std::vector<uint8_t> bytes;
   ByteWriter writer(&bytes);
-  if (!WriteSymbolBlock(values.data(), values.size(), &writer).ok()) std::abort();
+  if (!WriteSymbolBlock(values.data(), values.size(), RansLayout::kInterleaved, &writer).ok())
+    std::abort();
   return bytes;
 }
 
@@ -67,7 +68,7 @@ void DecodeBenchmark(benchmark::State& state, const std::vector<int32_t>& values
   const double start = ThreadCpuNs();
   for (auto _ : state) {
     ByteReader reader(bytes.data(), bytes.size());
-    if (!ReadSymbolBlock(&reader, count, -4096, 4096, out.data()).ok()) {
+    if (!ReadSymbolBlock(&reader, RansLayout::kInterleaved, count, -4096, 4096, out.data()).ok()) {
       state.SkipWithError("decode failed");
       break;
     }
@@ -103,7 +104,8 @@ void BM_EncodeLaplacian1M(benchmark::State& state) {
   for (auto _ : state) {
     bytes.clear();
     ByteWriter writer(&bytes);
-    benchmark::DoNotOptimize(WriteSymbolBlock(values.data(), values.size(), &writer));
+    benchmark::DoNotOptimize(
+        WriteSymbolBlock(values.data(), values.size(), RansLayout::kInterleaved, &writer));
   }
   SetNsPerSymbol(state, ThreadCpuNs() - start, values.size());
 }

@@ -70,7 +70,7 @@ std::vector<uint8_t> BlobGridPayload(const GridConfig& config) {
   }
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  if (!WriteMotionGrid(config, grid, &writer).ok()) std::abort();
+  if (!WriteMotionGrid(config, grid, RansLayout::kInterleaved, &writer).ok()) std::abort();
   return payload;
 }
 
@@ -115,7 +115,7 @@ const MotionData& Data() {
     auto* d = new MotionData;
     d->grid_payload = BlobGridPayload(d->config);
     ByteReader reader(d->grid_payload.data(), d->grid_payload.size());
-    if (!ReadMotionGrid(&reader, d->config, &d->grid).ok()) std::abort();
+    if (!ReadMotionGrid(&reader, RansLayout::kInterleaved, d->config, &d->grid).ok()) std::abort();
 
     // The MLP as decoded: random weights of a 10 -> 64 -> 7 network through the 12-bit writer.
     std::mt19937 rng(1);
@@ -128,9 +128,11 @@ const MotionData& Data() {
     }
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    if (!WriteMlpWeights(mlp, 12, &writer).ok()) std::abort();
+    if (!WriteMlpWeights(mlp, 12, RansLayout::kInterleaved, &writer).ok()) std::abort();
     ByteReader mlp_reader(payload.data(), payload.size());
-    if (!ReadMlpWeights(&mlp_reader, d->config.feature_count(), MlpConfig{}, &d->mlp).ok()) {
+    if (!ReadMlpWeights(&mlp_reader, RansLayout::kInterleaved, d->config.feature_count(),
+                        MlpConfig{}, &d->mlp)
+             .ok()) {
       std::abort();
     }
 
@@ -162,7 +164,7 @@ double Min(const std::vector<double>& v) { return *std::min_element(v.begin(), v
 
 void ReadGrid(const MotionData& data, MotionGrid* grid) {
   ByteReader reader(data.grid_payload.data(), data.grid_payload.size());
-  if (!ReadMotionGrid(&reader, data.config, grid).ok()) std::abort();
+  if (!ReadMotionGrid(&reader, RansLayout::kInterleaved, data.config, grid).ok()) std::abort();
 }
 
 void BM_ReadMotionGrid(benchmark::State& state) {

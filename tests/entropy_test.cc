@@ -19,21 +19,23 @@ namespace {
 
 constexpr int32_t kMaxMag = kMaxSymbolMagnitude;
 
-std::vector<uint8_t> EncodeBlock(const std::vector<int32_t>& values) {
+std::vector<uint8_t> EncodeBlock(const std::vector<int32_t>& values,
+                                 RansLayout layout = RansLayout::kInterleaved) {
   std::vector<uint8_t> bytes;
   ByteWriter writer(&bytes);
-  const Status status = WriteSymbolBlock(values.data(), values.size(), &writer);
+  const Status status = WriteSymbolBlock(values.data(), values.size(), layout, &writer);
   EXPECT_TRUE(status.ok()) << status.message();
   return bytes;
 }
 
 // Decodes from an exactly sized heap copy, so a sanitizer build catches any overread.
 Status DecodeBlock(const std::vector<uint8_t>& bytes, uint32_t count, int32_t lo, int32_t hi,
-                   std::vector<int32_t>* values, size_t* consumed = nullptr) {
+                   std::vector<int32_t>* values, size_t* consumed = nullptr,
+                   RansLayout layout = RansLayout::kInterleaved) {
   const std::vector<uint8_t> copy(bytes);
   ByteReader reader(copy.data(), copy.size());
   values->assign(count, 0x7eadbeef);
-  const Status status = ReadSymbolBlock(&reader, count, lo, hi, values->data());
+  const Status status = ReadSymbolBlock(&reader, layout, count, lo, hi, values->data());
   if (consumed) *consumed = reader.position();
   return status;
 }
@@ -41,7 +43,7 @@ Status DecodeBlock(const std::vector<uint8_t>& bytes, uint32_t count, int32_t lo
 void ExpectRoundTrip(const std::vector<int32_t>& values, int32_t lo = -kMaxMag,
                      int32_t hi = kMaxMag) {
   const std::vector<uint8_t> bytes = EncodeBlock(values);
-  EXPECT_EQ(SymbolBlockSize(values.data(), values.size()), bytes.size());
+  EXPECT_EQ(SymbolBlockSize(values.data(), values.size(), RansLayout::kInterleaved), bytes.size());
   std::vector<int32_t> decoded;
   size_t consumed = 0;
   const Status status =
@@ -192,7 +194,7 @@ TEST(EntropyTest, RoundTripSparseAlphabetUsesZeroRuns) {
 TEST(EntropyTest, CountZero) {
   const std::vector<uint8_t> bytes = EncodeBlock({});
   EXPECT_EQ(bytes, (std::vector<uint8_t>{1, 0}));
-  EXPECT_EQ(SymbolBlockSize(nullptr, 0), 2u);
+  EXPECT_EQ(SymbolBlockSize(nullptr, 0, RansLayout::kInterleaved), 2u);
   std::vector<int32_t> decoded;
   size_t consumed = 0;
   // No value is decoded, so the range does not apply.
@@ -210,14 +212,14 @@ TEST(EntropyTest, BlocksAreSelfDelimiting) {
   const std::vector<int32_t> a = Laplacian(3000, 2.0, 100, 12), b = Uniform(40, -9, 9, 13);
   std::vector<uint8_t> bytes;
   ByteWriter writer(&bytes);
-  ASSERT_TRUE(WriteSymbolBlock(a.data(), a.size(), &writer).ok());
-  ASSERT_TRUE(WriteSymbolBlock(b.data(), b.size(), &writer).ok());
-  ASSERT_TRUE(WriteSymbolBlock(nullptr, 0, &writer).ok());
+  ASSERT_TRUE(WriteSymbolBlock(a.data(), a.size(), RansLayout::kInterleaved, &writer).ok());
+  ASSERT_TRUE(WriteSymbolBlock(b.data(), b.size(), RansLayout::kInterleaved, &writer).ok());
+  ASSERT_TRUE(WriteSymbolBlock(nullptr, 0, RansLayout::kInterleaved, &writer).ok());
   ByteReader reader(bytes.data(), bytes.size());
   std::vector<int32_t> da(a.size()), db(b.size());
-  ASSERT_TRUE(ReadSymbolBlock(&reader, 3000, -100, 100, da.data()).ok());
-  ASSERT_TRUE(ReadSymbolBlock(&reader, 40, -9, 9, db.data()).ok());
-  ASSERT_TRUE(ReadSymbolBlock(&reader, 0, 0, 0, nullptr).ok());
+  ASSERT_TRUE(ReadSymbolBlock(&reader, RansLayout::kInterleaved, 3000, -100, 100, da.data()).ok());
+  ASSERT_TRUE(ReadSymbolBlock(&reader, RansLayout::kInterleaved, 40, -9, 9, db.data()).ok());
+  ASSERT_TRUE(ReadSymbolBlock(&reader, RansLayout::kInterleaved, 0, 0, 0, nullptr).ok());
   EXPECT_EQ(reader.remaining(), 0u);
   EXPECT_EQ(da, a);
   EXPECT_EQ(db, b);
@@ -227,13 +229,16 @@ TEST(EntropyTest, WriterRejectsValuesBeyondLimits) {
   std::vector<uint8_t> bytes;
   ByteWriter writer(&bytes);
   const std::vector<int32_t> too_wide = {-2048, 2048};  // alphabet 4097
-  EXPECT_EQ(WriteSymbolBlock(too_wide.data(), 2, &writer).code(), M4D_ERR_LIMIT);
+  EXPECT_EQ(WriteSymbolBlock(too_wide.data(), 2, RansLayout::kInterleaved, &writer).code(),
+            M4D_ERR_LIMIT);
   const std::vector<int32_t> too_big = {kMaxMag + 1};
-  EXPECT_EQ(WriteSymbolBlock(too_big.data(), 1, &writer).code(), M4D_ERR_LIMIT);
+  EXPECT_EQ(WriteSymbolBlock(too_big.data(), 1, RansLayout::kInterleaved, &writer).code(),
+            M4D_ERR_LIMIT);
   const std::vector<int32_t> too_small = {-kMaxMag - 1, -kMaxMag};
-  EXPECT_EQ(WriteSymbolBlock(too_small.data(), 2, &writer).code(), M4D_ERR_LIMIT);
+  EXPECT_EQ(WriteSymbolBlock(too_small.data(), 2, RansLayout::kInterleaved, &writer).code(),
+            M4D_ERR_LIMIT);
   EXPECT_TRUE(bytes.empty());  // Nothing is written on failure.
-  EXPECT_EQ(SymbolBlockSize(too_wide.data(), 2), 0u);
+  EXPECT_EQ(SymbolBlockSize(too_wide.data(), 2, RansLayout::kInterleaved), 0u);
 }
 
 double CostBits(const std::vector<uint64_t>& counts, const std::vector<uint32_t>& freqs) {
@@ -281,8 +286,11 @@ TEST(EntropyTest, RansEncodeMatchesSpecBoundaries) {
   // One symbol takes the whole range: the state never moves and the payload is L itself.
   for (uint32_t count : {1000u, 5000u}) {
     const std::vector<uint32_t> symbols(count, 1);
-    const std::vector<uint8_t> payload = RansEncode(symbols.data(), count, {0, 32768});
-    EXPECT_EQ(payload, (std::vector<uint8_t>{0, 0, 0x80, 0}));
+    const uint32_t states = RansStates(RansLayout::kInterleaved, count);
+    const std::vector<uint8_t> payload = RansEncode(symbols.data(), count, {0, 32768}, states);
+    std::vector<uint8_t> expected;
+    for (uint32_t j = 0; j < states; ++j) expected.insert(expected.end(), {0, 0, 0x80, 0});
+    EXPECT_EQ(payload, expected);
     std::vector<int32_t> decoded;
     ASSERT_TRUE(DecodeBlock(RawBlock(2, -1, {0, 0, 32768}, payload), count, -1, 0, &decoded).ok());
     EXPECT_EQ(decoded, std::vector<int32_t>(count, 0));
@@ -317,7 +325,8 @@ TEST(EntropyTest, CodedSizeWithinOnePercentOfIdeal) {
     for (uint64_t k : counts) {
       if (k > 0) entropy_bits -= k * std::log2(double(k) / c.values.size());
     }
-    const std::vector<uint8_t> payload = RansEncode(symbols.data(), symbols.size(), freqs);
+    const std::vector<uint8_t> payload =
+        RansEncode(symbols.data(), symbols.size(), freqs, kRansInterleavedStates);
     // The block sends exactly this table and payload.
     const std::vector<uint8_t> block = EncodeBlock(c.values);
     ASSERT_GE(block.size(), payload.size());
@@ -441,13 +450,64 @@ TEST(EntropyTest, RejectsWrongCount) {
 TEST(EntropyTest, RejectsWrongFinalState) {
   // Symbol 1 owns the whole range, so the state stays at its initial value.
   ExpectError(RawBlock(2, 0, {0, 0, 32768}, {1, 0, 0x80, 0}), 10, M4D_ERR_BITSTREAM,
-              "final rANS state 8388609");
+              "final rANS state 0 is 8388609");
   // An initial state below L pulls in bytes until it reaches L: legal, and here it works out.
   std::vector<int32_t> decoded;
   EXPECT_TRUE(
       DecodeBlock(RawBlock(2, 0, {0, 0, 32768}, {0, 0x80, 0, 0, 0}), 3, 0, 1, &decoded).ok());
   EXPECT_EQ(decoded, (std::vector<int32_t>{1, 1, 1}));
   ExpectError(RawBlock(2, 0, {0, 0, 32768}, {0, 0, 0, 0}), 3, M4D_ERR_BITSTREAM, "exhausted");
+}
+
+// Version 0.4's interleaved states (spec 5.2): blocks of 4096 values or more use four.
+TEST(EntropyTest, InterleavedStatesFromTheMinimumCount) {
+  EXPECT_EQ(RansStates(RansLayout::kInterleaved, 4095), 1u);
+  EXPECT_EQ(RansStates(RansLayout::kInterleaved, 4096), 4u);
+  EXPECT_EQ(RansStates(RansLayout::kSingleState, 1u << 20), 1u);
+  for (uint32_t count : {4095u, 4096u, 4097u, 4098u, 4099u, 10001u}) {
+    const std::vector<int32_t> values = Laplacian(count, 1.5, 300, 40 + count);
+    const std::vector<uint8_t> one = EncodeBlock(values, RansLayout::kSingleState);
+    const std::vector<uint8_t> four = EncodeBlock(values, RansLayout::kInterleaved);
+    for (RansLayout layout : {RansLayout::kSingleState, RansLayout::kInterleaved}) {
+      const std::vector<uint8_t>& bytes = layout == RansLayout::kSingleState ? one : four;
+      std::vector<int32_t> decoded;
+      size_t consumed = 0;
+      const Status status = DecodeBlock(bytes, count, -300, 300, &decoded, &consumed, layout);
+      ASSERT_TRUE(status.ok()) << count << ": " << status.message();
+      EXPECT_EQ(consumed, bytes.size());
+      EXPECT_EQ(decoded, values) << count;
+    }
+    // Three more 4-byte states, and the same bytes below the minimum count.
+    if (count < kRansInterleaveMinCount) {
+      EXPECT_EQ(four, one);
+    } else {
+      EXPECT_NEAR(static_cast<double>(four.size()), one.size() + 12.0, 2.0) << count;
+      std::vector<int32_t> decoded;
+      EXPECT_EQ(DecodeBlock(one, count, -300, 300, &decoded).code(), M4D_ERR_BITSTREAM) << count;
+    }
+  }
+}
+
+TEST(EntropyTest, InterleavedStatesAreEachChecked) {
+  // Symbol 1 owns the whole range: every state stays at its initial value.
+  const std::vector<uint32_t> table = {0, 0, 32768};
+  std::vector<uint8_t> states;
+  for (int j = 0; j < 4; ++j) states.insert(states.end(), {0, 0, 0x80, 0});
+  std::vector<int32_t> decoded;
+  ASSERT_TRUE(DecodeBlock(RawBlock(2, 0, table, states), 4096, 0, 1, &decoded).ok());
+  EXPECT_EQ(decoded, std::vector<int32_t>(4096, 1));
+  std::vector<uint8_t> bad = states;
+  bad[12] = 1;  // the fourth state ends at L + 1
+  ExpectError(RawBlock(2, 0, table, bad), 4096, M4D_ERR_BITSTREAM, "final rANS state 3 is 8388609");
+  // Each state may start below L and pull in its bytes at its first symbol.
+  std::vector<uint8_t> low = states;
+  low[8] = 0, low[9] = 0x80, low[10] = 0;  // the third state starts at 2^15
+  low.push_back(0);
+  ASSERT_TRUE(DecodeBlock(RawBlock(2, 0, table, low), 4097, 0, 1, &decoded).ok());
+  EXPECT_EQ(decoded, std::vector<int32_t>(4097, 1));
+  // Four states need 16 payload bytes.
+  states.resize(15);
+  ExpectError(RawBlock(2, 0, table, states), 4096, M4D_ERR_BITSTREAM, "payload_size 15 below 16");
 }
 
 TEST(EntropyTest, CorruptedPayloadNeverCrashes) {

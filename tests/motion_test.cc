@@ -42,7 +42,7 @@ GridConfig MakeConfig(std::vector<int> channels, std::vector<int> resolution) {
 Status ReadGrid(const std::vector<uint8_t>& payload, const GridConfig& config, MotionGrid* grid,
                 size_t* remaining = nullptr) {
   ByteReader reader(payload.data(), payload.size());
-  Status status = ReadMotionGrid(&reader, config, grid);
+  Status status = ReadMotionGrid(&reader, RansLayout::kInterleaved, config, grid);
   if (remaining) *remaining = reader.remaining();
   return status;
 }
@@ -94,7 +94,7 @@ TEST(MotionGridTest, RoundTripPartialBricks) {
     if (in.values[0].size() > 2) in.values[0][1] = 1e6f;
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+    ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
 
     MotionGrid out;
     for (auto& v : out.values) v.assign(100, 7);  // stale content must be overwritten
@@ -135,7 +135,7 @@ TEST(MotionGridTest, ReusedGridEqualsFreshRead) {
         });
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+    ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
     MotionGrid fresh;
     ASSERT_TRUE(ReadGrid(payload, config, &fresh).ok());
     ASSERT_TRUE(ReadGrid(payload, config, &reused).ok());
@@ -160,19 +160,19 @@ TEST(MotionGridTest, OnlyBricksWithContentAreFlagged) {
   const FloatMotionGrid in = SparseFloatGrid(config, &rng, keep);
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+  ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
 
   // Parse the syntax by hand: 6 box floats, the step, the flags, then the values.
   ByteReader reader(payload.data(), payload.size());
   float f;
   for (int i = 0; i < 7; ++i) ASSERT_TRUE(reader.ReadFiniteF32(&f));
   std::vector<int32_t> flags(27);
-  ASSERT_TRUE(ReadSymbolBlock(&reader, 27, 0, 1, flags.data()).ok());
+  ASSERT_TRUE(ReadSymbolBlock(&reader, RansLayout::kInterleaved, 27, 0, 1, flags.data()).ok());
   for (int b = 0; b < 27; ++b) EXPECT_EQ(flags[b], b == (2 * 3 + 0) * 3 + 2 ? 1 : 0) << b;
   std::vector<int32_t> values(4 * 8 * 4 * 2);  // partial brick: 4 x 8 x 4 voxels, 2 channels
-  ASSERT_TRUE(
-      ReadSymbolBlock(&reader, static_cast<uint32_t>(values.size()), -32768, 32767, values.data())
-          .ok());
+  ASSERT_TRUE(ReadSymbolBlock(&reader, RansLayout::kInterleaved,
+                              static_cast<uint32_t>(values.size()), -32768, 32767, values.data())
+                  .ok());
   EXPECT_EQ(reader.remaining(), 0u);
   // Voxels of the brick in raster order, channels innermost.
   size_t i = 0;
@@ -193,7 +193,7 @@ TEST(MotionGridTest, AllZeroGrid) {
   for (int l = 0; l < 3; ++l) in.values[l].assign(config.level_values(l), 0.001f);  // rounds to 0
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+  ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
   EXPECT_LT(payload.size(), 64u);
   MotionGrid out;
   ASSERT_TRUE(ReadGrid(payload, config, &out).ok());
@@ -212,7 +212,7 @@ TEST(MotionGridTest, WriterRejectsBadInput) {
   auto fails = [&](const FloatMotionGrid& grid) {
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    Status status = WriteMotionGrid(config, grid, &writer);
+    Status status = WriteMotionGrid(config, grid, RansLayout::kInterleaved, &writer);
     return status.code() == M4D_ERR_INVALID_ARG && payload.empty();
   };
   EXPECT_FALSE(fails(good));
@@ -240,8 +240,9 @@ std::vector<uint8_t> HandMadeGrid(float box_scale, float step, std::vector<int32
   for (int a = 0; a < 3; ++a) writer.WriteF32(0.0f);
   for (int a = 0; a < 3; ++a) writer.WriteF32(a == 1 ? box_scale : 1.0f);
   writer.WriteF32(step);
-  EXPECT_TRUE(WriteSymbolBlock(flags.data(), flags.size(), &writer).ok());
-  EXPECT_TRUE(WriteSymbolBlock(values.data(), values.size(), &writer).ok());
+  EXPECT_TRUE(WriteSymbolBlock(flags.data(), flags.size(), RansLayout::kInterleaved, &writer).ok());
+  EXPECT_TRUE(
+      WriteSymbolBlock(values.data(), values.size(), RansLayout::kInterleaved, &writer).ok());
   return payload;
 }
 
@@ -292,7 +293,7 @@ TEST(MotionGridTest, TruncationAtEveryByte) {
       SparseFloatGrid(config, &rng, [](int l, int bz, int, int bx) { return l == 1 || bz != bx; });
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+  ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
   MotionGrid grid;
   ASSERT_TRUE(ReadGrid(payload, config, &grid).ok());
   for (size_t size = 0; size < payload.size(); ++size) {
@@ -308,7 +309,7 @@ TEST(MotionGridTest, CorruptedBytesNeverCrash) {
       SparseFloatGrid(config, &rng, [](int l, int bz, int, int bx) { return l == 1 || bz != bx; });
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  ASSERT_TRUE(WriteMotionGrid(config, in, &writer).ok());
+  ASSERT_TRUE(WriteMotionGrid(config, in, RansLayout::kInterleaved, &writer).ok());
   std::uniform_int_distribution<size_t> position(0, payload.size() - 1);
   std::uniform_int_distribution<int> byte(0, 255);
   MotionGrid grid;
@@ -355,10 +356,10 @@ TEST(MlpWeightsTest, RoundTrip) {
     for (float& w : in.layers[1].biases) w = 0;  // all-zero tensor
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    ASSERT_TRUE(WriteMlpWeights(in, bits, &writer).ok());
+    ASSERT_TRUE(WriteMlpWeights(in, bits, RansLayout::kInterleaved, &writer).ok());
     ByteReader reader(payload.data(), payload.size());
     MlpWeights out;
-    ASSERT_TRUE(ReadMlpWeights(&reader, 10, config, &out).ok());
+    ASSERT_TRUE(ReadMlpWeights(&reader, RansLayout::kInterleaved, 10, config, &out).ok());
     EXPECT_EQ(reader.remaining(), 0u);
     ASSERT_EQ(out.layers.size(), 3u);
     const float max_q = static_cast<float>((1 << (bits - 1)) - 1);
@@ -394,7 +395,7 @@ std::vector<uint8_t> HandMadeMlp(const std::vector<MlpLayer>& shapes, float step
     for (size_t count : {layer.weights.size(), layer.biases.size()}) {
       writer.WriteF32(step);
       const std::vector<int32_t> values(count, q);
-      EXPECT_TRUE(WriteSymbolBlock(values.data(), count, &writer).ok());
+      EXPECT_TRUE(WriteSymbolBlock(values.data(), count, RansLayout::kInterleaved, &writer).ok());
     }
   }
   return payload;
@@ -405,7 +406,7 @@ TEST(MlpWeightsTest, DequantizationAndErrors) {
   const std::vector<MlpLayer> shapes = MlpShapes(2, config);
   auto read = [&](const std::vector<uint8_t>& payload, MlpWeights* out) {
     ByteReader reader(payload.data(), payload.size());
-    return ReadMlpWeights(&reader, 2, config, out);
+    return ReadMlpWeights(&reader, RansLayout::kInterleaved, 2, config, out);
   };
   MlpWeights out;
   // The largest integer a symbol block can carry, with a step that overflows it to infinity.
@@ -435,7 +436,9 @@ TEST(MlpWeightsTest, WriterRejectsBadInput) {
   auto fails = [](const MlpWeights& mlp, int bits) {
     std::vector<uint8_t> payload;
     ByteWriter writer(&payload);
-    return WriteMlpWeights(mlp, bits, &writer).code() == M4D_ERR_INVALID_ARG && payload.empty();
+    return WriteMlpWeights(mlp, bits, RansLayout::kInterleaved, &writer).code() ==
+               M4D_ERR_INVALID_ARG &&
+           payload.empty();
   };
   EXPECT_FALSE(fails(good, 12));
   EXPECT_TRUE(fails(good, 1));

@@ -72,11 +72,14 @@ struct Walk {
   int inter_in_gop = 0;
   bool frame_complete = false;  // the previous packet ended a frame
   bool dependent = false;       // the current keyframe is a dependent one (0.3)
+  int version_minor = 0;
+  uint32_t dynamic_count = 0;  // |D|, which gives the count of APPEARANCE and removal blocks
 
   void Add(const std::string& f) { features.insert(f); }
 
-  // 5.1: returns (alphabet size, min).
-  std::pair<uint32_t, int64_t> SymbolBlock(Reader* r) {
+  // 5.1: returns (alphabet size, min). `count` is the block's value count where the walk knows
+  // it (0 where it would take decoding another block).
+  std::pair<uint32_t, int64_t> SymbolBlock(Reader* r, uint32_t count = 0) {
     const uint32_t n = r->VarUint();
     const int64_t min = r->VarSint();
     if (min < 0) Add("min_negative");
@@ -92,15 +95,20 @@ struct Walk {
         i += r->VarUint();
       }
     }
-    r->Skip(r->VarUint());
+    const uint32_t payload_size = r->VarUint();
+    if (count >= 4096) {  // 5.2: four interleaved states from version 0.4
+      Add(version_minor >= 4 ? "rans_states=4" : "rans_states=1,count>=4096");
+      EXPECT_GE(payload_size, version_minor >= 4 ? 16u : 4u);
+    }
+    r->Skip(payload_size);
     return {n, min};
   }
 
-  // 5.4; set names the packet ("static", "dynamic", "added").
-  void GaussianSet(Reader* r, const std::string& set) {
+  // 5.4; set names the packet ("static", "dynamic", "added"). Returns the set's count.
+  uint32_t GaussianSet(Reader* r, const std::string& set) {
     const uint32_t count = r->VarUint();
     Add(set + "_count" + (count == 0 ? "=0" : ">0"));
-    if (count == 0) return;
+    if (count == 0) return 0;
     const int k = (sh_degree + 1) * (sh_degree + 1);
     const int components[6] = {3, 3, 4, 1, 3, 3 * (k - 1)};
     for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
@@ -116,11 +124,13 @@ struct Walk {
     }
     const uint32_t draco = r->VarUint();
     r->Skip(draco);
+    return count;
   }
 
   void SequenceHeader(Reader* r) {
     r->Skip(1);
-    Add("version_minor=" + std::to_string(r->U8()));
+    version_minor = r->U8();
+    Add("version_minor=" + std::to_string(version_minor));
     r->Skip(1);
     sh_degree = static_cast<int>(r->U8());
     Add("sh_degree=" + std::to_string(sh_degree));
@@ -171,14 +181,14 @@ struct Walk {
     Add("appearance");
     const float step = r->F32();
     if (step != std::exp2(std::round(std::log2(step)))) Add("appearance_step_not_power_of_two");
-    SymbolBlock(r);
+    SymbolBlock(r, 3 * dynamic_count);
   }
 
   void Compensation(Reader* r) {
     const uint32_t removed = r->VarUint();
     Add(removed ? "removed>0" : "removed=0");
-    if (removed) SymbolBlock(r);
-    GaussianSet(r, "added");
+    if (removed) SymbolBlock(r, dynamic_count);
+    dynamic_count = dynamic_count - removed + GaussianSet(r, "added");
   }
 
   void StartGop(bool random_access) {
@@ -217,7 +227,7 @@ struct Walk {
       }
       case M4D_PACKET_KEYFRAME_DYNAMIC:
         if (!static_in_gop) Add(dependent ? "static_update_absent" : "keyframe_static_absent");
-        GaussianSet(&r, "dynamic");
+        dynamic_count = GaussianSet(&r, "dynamic");
         break;
       case M4D_PACKET_MLP_WEIGHTS:
         Mlp(&r);

@@ -40,6 +40,7 @@ struct TestStreamShape {
   int static_change_step = 0;
   // Inter frames change the dynamic set's colours with an APPEARANCE (bitstream 0.3).
   bool appearance = false;
+  int version_minor = M4D_BITSTREAM_VERSION_MINOR;
 };
 
 // A dependent keyframe's static change of MakeTestStream.
@@ -84,6 +85,7 @@ inline std::vector<int32_t> TestAppearanceValues(size_t n, int frame) {
 inline TestStream MakeTestStream(const TestStreamShape& shape = TestStreamShape()) {
   StreamWriterOptions options;
   options.sequence.sh_degree = shape.sh_degree;
+  options.sequence.version_minor = shape.version_minor;
   options.sequence.grid.resolution[0] = 8;
   options.sequence.grid.resolution[1] = 12;
   options.sequence.grid.resolution[2] = 20;

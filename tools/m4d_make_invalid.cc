@@ -31,8 +31,9 @@ using Stream = std::vector<Packet>;  // packets in order
 // MLP_WEIGHTS, then MOTION_GRID and COMPENSATION of frames 1 and 2), 8..15 GOP 1.
 enum : size_t { kSeq = 0, kStatic = 1, kDynamic = 2, kMlp = 3, kMotion = 4, kComp = 5 };
 
-bool MakeBase(Stream* out) {
+bool MakeBase(int version_minor, Stream* out) {
   m4d::StreamWriterOptions options;
+  options.sequence.version_minor = version_minor;
   options.sequence.sh_degree = 1;
   options.sequence.grid.resolution[0] = 8;
   options.sequence.grid.resolution[1] = 12;
@@ -128,7 +129,8 @@ Packet AppearancePacket(float step, uint32_t values = 3 * 80) {
   std::vector<uint8_t> payload;
   m4d::ByteWriter writer(&payload);
   writer.WriteF32(step);
-  if (!m4d::WriteSymbolBlock(q.data(), q.size(), &writer).ok()) return {};
+  if (!m4d::WriteSymbolBlock(q.data(), q.size(), m4d::RansLayout::kInterleaved, &writer).ok())
+    return {};
   Packet packet;
   m4d::AppendPacket(M4D_PACKET_APPEARANCE, 1, false, payload.data(), payload.size(), &packet);
   return packet;
@@ -139,6 +141,9 @@ struct Case {
   const char* error;
   const char* what;
   std::function<void(Stream*, std::vector<uint8_t>* tail)> edit;  // tail: bytes appended
+  // The base stream's version. A stream that declares 0.2 is edited from a 0.3 one, whose
+  // symbol blocks are 0.2's (one rANS state).
+  int base_minor = M4D_BITSTREAM_VERSION_MINOR;
 };
 
 // Payload offsets of SEQUENCE_HEADER (spec 4.1, three grid levels): 0 version_major,
@@ -188,7 +193,7 @@ std::vector<Case> Cases() {
          const uint32_t crc = m4d::Crc32(p.data(), 20);
          for (int i = 0; i < 4; ++i) p[20 + i] = static_cast<uint8_t>(crc >> (8 * i));
        }},
-      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.4 (the next minor)",
+      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.5 (the next minor)",
        SetPayloadByte(kSeq, 1, M4D_BITSTREAM_VERSION_MINOR + 1)},
       {"unsupported_profile", "M4D_ERR_UNSUPPORTED", "profile 1", SetPayloadByte(kSeq, 2, 1)},
       {"sh_degree_out_of_range", "M4D_ERR_BITSTREAM", "sh_degree 4", SetPayloadByte(kSeq, 3, 4)},
@@ -223,7 +228,8 @@ std::vector<Case> Cases() {
          s->erase(s->begin() + 8, s->begin() + 8 + kDynamic);
          (*s)[kSeq][24 + 1] = 2;
          FixCrcs(&(*s)[kSeq]);
-       }},
+       },
+       3},
       {"dependent_keyframe_index_gap", "M4D_ERR_BITSTREAM",
        "a dependent keyframe numbered one past the next frame",
        [](Stream* s, std::vector<uint8_t>*) {
@@ -243,7 +249,8 @@ std::vector<Case> Cases() {
          s->insert(s->begin() + kComp, AppearancePacket(0.01f));
          (*s)[kSeq][24 + 1] = 2;
          FixCrcs(&(*s)[kSeq]);
-       }},
+       },
+       3},
       {"appearance_step_zero", "M4D_ERR_BITSTREAM", "an APPEARANCE with step 0",
        [](Stream* s, std::vector<uint8_t>*) {
          s->insert(s->begin() + kComp, AppearancePacket(0.0f));
@@ -324,8 +331,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Write the invalid conformance streams and their expected errors."};
   app.add_option("-o,--output-dir", dir, "where to write them")->capture_default_str();
   M4D_PARSE_ARGUMENTS(app, argc, argv);
-  Stream base;
-  if (!MakeBase(&base)) return 1;
+  Stream base, base_v03;
+  if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base) || !MakeBase(3, &base_v03)) return 1;
   std::ofstream expected(dir + "/EXPECTED");
   if (!expected) {
     std::fprintf(stderr, "m4d_make_invalid: cannot write %s/EXPECTED\n", dir.c_str());
@@ -334,7 +341,7 @@ int main(int argc, char** argv) {
   expected << "# <stream> <first error a decoder reports> <what is wrong>\n";
   int written = 0;
   for (const Case& c : Cases()) {
-    Stream stream = base;
+    Stream stream = c.base_minor == 3 ? base_v03 : base;
     std::vector<uint8_t> tail;
     c.edit(&stream, &tail);
     std::ofstream file(dir + "/" + c.name + ".m4d", std::ios::binary);

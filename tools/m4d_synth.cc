@@ -241,8 +241,10 @@ int main(int argc, char** argv) {
                  "with --dependent-gops: share of the static set each dependent keyframe "
                  "replaces, plus 3 Gaussians added (0: no STATIC_UPDATE)")
       ->check(CLI::Range(0.0f, 1.0f));
-  app.add_option("--bitstream-minor", opt.bitstream_minor,
-                 "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs)")
+  app.add_option(
+         "--bitstream-minor", opt.bitstream_minor,
+         "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs; 3: one "
+         "rANS state per symbol block)")
       ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));

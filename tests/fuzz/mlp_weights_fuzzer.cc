@@ -15,7 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int features = 1 + (data[0] >> 2) % 32;
   m4d::ByteReader reader(data + 2, size - 2);
   m4d::MlpWeights weights;
-  if (m4d::ReadMlpWeights(&reader, features, config, &weights).ok() &&
+  if (m4d::ReadMlpWeights(&reader, m4d::RansLayout::kInterleaved, features, config, &weights)
+          .ok() &&
       weights.layers.size() != static_cast<size_t>(config.hidden_layers) + 1) {
     std::abort();
   }

@@ -18,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   m4d::ByteReader reader(data + 1, size - 1);
   m4d::MotionGrid grid;
-  if (m4d::ReadMotionGrid(&reader, config, &grid).ok()) {
+  if (m4d::ReadMotionGrid(&reader, m4d::RansLayout::kInterleaved, config, &grid).ok()) {
     for (int l = 0; l < config.num_levels; ++l) {
       if (grid.values[l].size() != config.level_values(l)) std::abort();
     }

@@ -34,9 +34,10 @@ struct MoreBits {
   bool operator()(const Candidate& a, const Candidate& b) const { return a.bits > b.bits; }
 };
 
-// rANS encoding of spec 5.2, symbol i given by symbol_at(i).
+// rANS encoding of spec 5.2 with `states` interleaved states, symbol i given by symbol_at(i).
 template <typename SymbolAt>
-std::vector<uint8_t> Encode(SymbolAt symbol_at, size_t count, const std::vector<uint32_t>& freqs) {
+std::vector<uint8_t> Encode(SymbolAt symbol_at, size_t count, const std::vector<uint32_t>& freqs,
+                            uint32_t states) {
   // x / f as (x * ceil(2^47 / f)) >> 47: exact while x < 2^16 * f (always so after the
   // renormalisation, as x_max = 2^16 * f), and the product stays below 2^64.
   struct Coder {
@@ -53,11 +54,14 @@ std::vector<uint8_t> Encode(SymbolAt symbol_at, size_t count, const std::vector<
   }
   // x < 2^31 after every step and x_max >= 2^16, so a symbol pushes at most 2 bytes. They are
   // stored backwards from the end, which leaves them in the decoder's reading order.
-  std::vector<uint8_t> buffer(4 + 2 * count);
+  // Symbol i goes through state i mod states; in reverse order, each state's bytes land where
+  // the decoder, reading forward, renormalises that state.
+  std::vector<uint8_t> buffer(4 * states + 2 * count);
   uint8_t* const end = buffer.data() + buffer.size();
   uint8_t* p = end;
-  uint32_t x = kRansLow;
+  std::vector<uint32_t> xs(states, kRansLow);
   for (size_t i = count; i-- > 0;) {
+    uint32_t& x = xs[i % states];
     const Coder& c = coders[symbol_at(i)];
     const uint32_t x_max = ((kRansLow >> kRansPrecision) << 8) * c.freq;
     if (x >= x_max) {
@@ -71,8 +75,10 @@ std::vector<uint8_t> Encode(SymbolAt symbol_at, size_t count, const std::vector<
     const uint32_t q = static_cast<uint32_t>((x * c.reciprocal) >> 47);
     x = q * kRansTotal + (x - q * c.freq) + c.cum;
   }
-  p -= 4;
-  for (int k = 0; k < 4; ++k) p[k] = static_cast<uint8_t>(x >> (8 * k));
+  p -= 4 * states;
+  for (uint32_t j = 0; j < states; ++j) {
+    for (uint32_t k = 0; k < 4; ++k) p[4 * j + k] = static_cast<uint8_t>(xs[j] >> (8 * k));
+  }
   return std::vector<uint8_t>(p, end);
 }
 
@@ -143,11 +149,11 @@ std::vector<uint32_t> NormalizeFrequencies(const std::vector<uint64_t>& counts) 
 }
 
 std::vector<uint8_t> RansEncode(const uint32_t* symbols, size_t count,
-                                const std::vector<uint32_t>& freqs) {
-  return Encode([symbols](size_t i) { return symbols[i]; }, count, freqs);
+                                const std::vector<uint32_t>& freqs, uint32_t states) {
+  return Encode([symbols](size_t i) { return symbols[i]; }, count, freqs, states);
 }
 
-Status WriteSymbolBlock(const int32_t* values, size_t count, ByteWriter* out) {
+Status WriteSymbolBlock(const int32_t* values, size_t count, RansLayout layout, ByteWriter* out) {
   if (count == 0) {
     out->WriteVarUint(1);
     out->WriteVarSint(0);
@@ -173,8 +179,10 @@ Status WriteSymbolBlock(const int32_t* values, size_t count, ByteWriter* out) {
   std::vector<uint64_t> counts(n, 0);
   for (size_t i = 0; i < count; ++i) ++counts[values[i] - min];
   const std::vector<uint32_t> freqs = NormalizeFrequencies(counts);
-  const std::vector<uint8_t> payload = Encode(
-      [values, min](size_t i) { return static_cast<uint32_t>(values[i] - min); }, count, freqs);
+  if (count > UINT32_MAX / 2) return LimitError("symbol block: above 2^31 values");
+  const std::vector<uint8_t> payload =
+      Encode([values, min](size_t i) { return static_cast<uint32_t>(values[i] - min); }, count,
+             freqs, RansStates(layout, static_cast<uint32_t>(count)));
   if (payload.size() > UINT32_MAX) return LimitError("symbol block: payload above 4 GiB");
 
   out->WriteVarUint(n);
@@ -196,11 +204,11 @@ Status WriteSymbolBlock(const int32_t* values, size_t count, ByteWriter* out) {
   return Status::Ok();
 }
 
-size_t SymbolBlockSize(const int32_t* values, size_t count) {
+size_t SymbolBlockSize(const int32_t* values, size_t count, RansLayout layout) {
   std::vector<uint8_t> scratch;
   ByteWriter writer(&scratch);
   // A block is never empty, so 0 reports values that cannot be coded.
-  if (!WriteSymbolBlock(values, count, &writer).ok()) return 0;
+  if (!WriteSymbolBlock(values, count, layout, &writer).ok()) return 0;
   return scratch.size();
 }
 

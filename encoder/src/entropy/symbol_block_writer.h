@@ -9,6 +9,7 @@
 
 #include "common/byte_writer.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 
 namespace m4d {
 
@@ -16,16 +17,18 @@ namespace m4d {
 // least 1, close to minimum coded size. counts.size() is the alphabet size (>= 1).
 std::vector<uint32_t> NormalizeFrequencies(const std::vector<uint64_t>& counts);
 
-// rANS-encodes symbols (each < freqs.size(), with freqs[s] > 0) into the spec's payload.
+// rANS-encodes symbols (each < freqs.size(), with freqs[s] > 0) into the spec's payload with
+// `states` interleaved states (1 or kRansInterleavedStates).
 std::vector<uint8_t> RansEncode(const uint32_t* symbols, size_t count,
-                                const std::vector<uint32_t>& freqs);
+                                const std::vector<uint32_t>& freqs, uint32_t states = 1);
 
-// Writes symbol_block(count) for the values. Fails with M4D_ERR_LIMIT if max - min + 1
-// exceeds the alphabet limit (4096) or a value's magnitude exceeds 2^23.
-Status WriteSymbolBlock(const int32_t* values, size_t count, ByteWriter* out);
+// Writes symbol_block(count) for the values, its payload laid out as `layout` says for that
+// count. Fails with M4D_ERR_LIMIT if max - min + 1 exceeds the alphabet limit (4096) or a
+// value's magnitude exceeds 2^23.
+Status WriteSymbolBlock(const int32_t* values, size_t count, RansLayout layout, ByteWriter* out);
 
 // Size in bytes WriteSymbolBlock would produce (for rate reports and decisions).
-size_t SymbolBlockSize(const int32_t* values, size_t count);
+size_t SymbolBlockSize(const int32_t* values, size_t count, RansLayout layout);
 
 }  // namespace m4d
 

@@ -7,7 +7,8 @@
 
 namespace m4d {
 
-Status WriteAppearanceUpdate(float step, const std::vector<int32_t>& values, ByteWriter* out) {
+Status WriteAppearanceUpdate(float step, const std::vector<int32_t>& values, RansLayout layout,
+                             ByteWriter* out) {
   if (!std::isfinite(step) || !(step > 0.0f)) {
     return Status(M4D_ERR_INVALID_ARG, "appearance: the step must be finite and positive");
   }
@@ -17,7 +18,7 @@ Status WriteAppearanceUpdate(float step, const std::vector<int32_t>& values, Byt
     }
   }
   out->WriteF32(step);
-  return WriteSymbolBlock(values.data(), values.size(), out);
+  return WriteSymbolBlock(values.data(), values.size(), layout, out);
 }
 
 }  // namespace m4d

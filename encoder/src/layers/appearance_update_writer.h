@@ -8,11 +8,13 @@
 
 #include "common/byte_writer.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 
 namespace m4d {
 
 // values: 3 per Gaussian of the moved dynamic set (r, g, b), each within +-kMaxAppearanceValue.
-Status WriteAppearanceUpdate(float step, const std::vector<int32_t>& values, ByteWriter* out);
+Status WriteAppearanceUpdate(float step, const std::vector<int32_t>& values, RansLayout layout,
+                             ByteWriter* out);
 
 // What the symbol block's alphabet limit leaves to one value.
 constexpr int32_t kMaxAppearanceValue = 2047;

@@ -44,7 +44,7 @@ Status Quantize(const std::vector<float>& values, int max_q, QuantizedTensor* ou
 
 }  // namespace
 
-Status WriteMlpWeights(const MlpWeights& weights, int bits, ByteWriter* out) {
+Status WriteMlpWeights(const MlpWeights& weights, int bits, RansLayout layout, ByteWriter* out) {
   if (bits < 2 || bits > 12) return InvalidArg("bits " + std::to_string(bits) + " not in 2..12");
   if (weights.layers.size() < 2 || weights.layers.size() > kMaxMlpHiddenLayers + 1) {
     return InvalidArg("layer count out of range 2..5");
@@ -68,7 +68,7 @@ Status WriteMlpWeights(const MlpWeights& weights, int bits, ByteWriter* out) {
   if (weights.layers.back().outputs != kMlpOutputs) return InvalidArg("last layer needs 7 outputs");
   for (const QuantizedTensor& t : tensors) {
     out->WriteF32(t.step);
-    M4D_RETURN_IF_ERROR(WriteSymbolBlock(t.q.data(), t.q.size(), out));
+    M4D_RETURN_IF_ERROR(WriteSymbolBlock(t.q.data(), t.q.size(), layout, out));
   }
   return Status::Ok();
 }

@@ -5,13 +5,14 @@
 
 #include "common/byte_writer.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 #include "layers/mlp_weights.h"
 
 namespace m4d {
 
 // Writes the float weights (shapes as MlpShapes gives) quantized with `bits` (2..12) per
 // value, step = max |w| / (2^(bits-1) - 1) per tensor.
-Status WriteMlpWeights(const MlpWeights& weights, int bits, ByteWriter* out);
+Status WriteMlpWeights(const MlpWeights& weights, int bits, RansLayout layout, ByteWriter* out);
 
 }  // namespace m4d
 

@@ -55,7 +55,8 @@ Status Quantize(const std::vector<float>& values, float step, std::vector<int32_
   return Status::Ok();
 }
 
-Status WriteLevel(int r, int c, float step, const std::vector<int32_t>& q, ByteWriter* out) {
+Status WriteLevel(int r, int c, float step, const std::vector<int32_t>& q, RansLayout layout,
+                  ByteWriter* out) {
   const int n = (r + kBrickSize - 1) / kBrickSize;
   std::vector<int32_t> flags(static_cast<size_t>(n) * n * n, 0);
   std::vector<int32_t> coded;
@@ -82,13 +83,14 @@ Status WriteLevel(int r, int c, float step, const std::vector<int32_t>& q, ByteW
     }
   }
   out->WriteF32(step);
-  M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), out));
-  return WriteSymbolBlock(coded.data(), coded.size(), out);
+  M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), layout, out));
+  return WriteSymbolBlock(coded.data(), coded.size(), layout, out);
 }
 
 }  // namespace
 
-Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, ByteWriter* out) {
+Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, RansLayout layout,
+                       ByteWriter* out) {
   M4D_RETURN_IF_ERROR(CheckInputs(config, grid));
   // Quantize everything first so that a bad value leaves `out` untouched.
   std::vector<int32_t> q[kMaxGridLevels];
@@ -99,7 +101,7 @@ Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, By
   for (int a = 0; a < 3; ++a) out->WriteF32(grid.box_scale[a]);
   for (int l = 0; l < config.num_levels; ++l) {
     M4D_RETURN_IF_ERROR(
-        WriteLevel(config.resolution[l], config.channels[l], grid.step[l], q[l], out));
+        WriteLevel(config.resolution[l], config.channels[l], grid.step[l], q[l], layout, out));
   }
   return Status::Ok();
 }

@@ -7,6 +7,7 @@
 
 #include "common/byte_writer.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 #include "layers/motion_config.h"
 
 namespace m4d {
@@ -21,7 +22,8 @@ struct FloatMotionGrid {
 
 // Quantizes and writes a MOTION_GRID payload. Quantized values are clamped to the range the
 // alphabet limit allows around zero (+-2047); box_scale must be positive and finite.
-Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, ByteWriter* out);
+Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, RansLayout layout,
+                       ByteWriter* out);
 
 }  // namespace m4d
 

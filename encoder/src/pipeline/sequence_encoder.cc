@@ -75,9 +75,9 @@ StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames) {
 Status DecodedMlp(const MlpWeights& mlp, const EncoderOptions& o, MlpWeights* decoded) {
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(WriteMlpWeights(mlp, o.mlp_bits, &writer));
+  M4D_RETURN_IF_ERROR(WriteMlpWeights(mlp, o.mlp_bits, RansLayout::kInterleaved, &writer));
   ByteReader reader(payload.data(), payload.size());
-  return ReadMlpWeights(&reader, o.grid.feature_count(), o.mlp, decoded);
+  return ReadMlpWeights(&reader, RansLayout::kInterleaved, o.grid.feature_count(), o.mlp, decoded);
 }
 
 // The rounded grid of a motion estimation, dense, in the writer's and the decoder's forms.

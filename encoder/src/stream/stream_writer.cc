@@ -72,7 +72,8 @@ Status StreamWriter::WriteDynamicAndMlp(const GaussianSet& dynamic_set, const Ml
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_DYNAMIC, false, payload));
 
   payload.clear();
-  M4D_RETURN_IF_ERROR(WriteMlpWeights(mlp, options_.mlp_bits, &writer));
+  M4D_RETURN_IF_ERROR(
+      WriteMlpWeights(mlp, options_.mlp_bits, options_.sequence.rans_layout(), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MLP_WEIGHTS, true, payload));
   gop_open_ = true;
   return TakeReconstruction(recon);
@@ -111,7 +112,8 @@ Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
   }
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(WriteMotionGrid(options_.sequence.grid, grid, &writer));
+  M4D_RETURN_IF_ERROR(
+      WriteMotionGrid(options_.sequence.grid, grid, options_.sequence.rans_layout(), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MOTION_GRID, false, payload));
   motion_written_ = true;
   return Status::Ok();
@@ -126,7 +128,8 @@ Status StreamWriter::WriteAppearance(float step, const std::vector<int32_t>& val
   }
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(WriteAppearanceUpdate(step, values, &writer));
+  M4D_RETURN_IF_ERROR(
+      WriteAppearanceUpdate(step, values, options_.sequence.rans_layout(), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_APPEARANCE, false, payload));
   appearance_written_ = true;
   return Status::Ok();
@@ -160,7 +163,9 @@ Status StreamWriter::WriteSetChange(const std::vector<uint8_t>& removed, const G
   }
   ByteWriter writer(payload);
   writer.WriteVarUint(num_removed);
-  if (num_removed > 0) M4D_RETURN_IF_ERROR(WriteSymbolBlock(flags.data(), flags.size(), &writer));
+  if (num_removed > 0)
+    M4D_RETURN_IF_ERROR(
+        WriteSymbolBlock(flags.data(), flags.size(), options_.sequence.rans_layout(), &writer));
   return WriteGaussianSet(added, quantization, &writer);
 }
 

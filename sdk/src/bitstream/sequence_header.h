@@ -7,12 +7,13 @@
 
 #include "common/byte_reader.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 #include "layers/motion_config.h"
 
 namespace m4d {
 
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
-// keyframes; spec 10).
+// keyframes, 0.3 is 0.4 without interleaved rANS states; spec 10).
 constexpr int kOldestBitstreamMinor = 2;
 
 // True when the version is one this decoder implements.
@@ -35,6 +36,10 @@ struct SequenceHeader {
   // Dependent keyframes and STATIC_UPDATE exist from 0.3 on.
   bool allows_dependent_gops() const { return version_minor >= 3; }
   bool allows_appearance() const { return version_minor >= 3; }
+  // Interleaved rANS states exist from 0.4 on.
+  RansLayout rans_layout() const {
+    return version_minor >= 4 ? RansLayout::kInterleaved : RansLayout::kSingleState;
+  }
 };
 
 // Reads and validates a SEQUENCE_HEADER payload (the whole payload must be consumed).

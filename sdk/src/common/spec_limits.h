@@ -20,6 +20,10 @@ constexpr int kBrickSize = 8;
 constexpr int kRansPrecision = 15;
 constexpr uint32_t kRansTotal = 1u << kRansPrecision;
 constexpr uint32_t kRansLow = 1u << 23;
+// From version 0.4, blocks of at least kRansInterleaveMinCount values interleave this many
+// rANS states (spec 5.2).
+constexpr uint32_t kRansInterleavedStates = 4;
+constexpr uint32_t kRansInterleaveMinCount = 4096;
 constexpr int32_t kMaxSymbolMagnitude = 1 << 23;
 constexpr int kMaxAttributeBits = 24;
 constexpr int kMlpOutputs = 7;

@@ -278,7 +278,8 @@ Status Decoder::DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_s
 
 Status Decoder::DecodeMlp(const uint8_t* payload, size_t size) {
   ByteReader reader(payload, size);
-  Status status = ReadMlpWeights(&reader, sequence_.grid.feature_count(), sequence_.mlp, &mlp_);
+  Status status = ReadMlpWeights(&reader, sequence_.rans_layout(), sequence_.grid.feature_count(),
+                                 sequence_.mlp, &mlp_);
   if (!status.ok()) return Status(status.code(), "MLP_WEIGHTS: " + status.message());
   return RequireConsumed(reader, "MLP_WEIGHTS");
 }
@@ -296,7 +297,7 @@ GaussianSet* Decoder::MutableStaticSet() {
 
 Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   ByteReader reader(payload, size);
-  Status status = ReadMotionGrid(&reader, sequence_.grid, &grid_);
+  Status status = ReadMotionGrid(&reader, sequence_.rans_layout(), sequence_.grid, &grid_);
   if (!status.ok()) return Status(status.code(), "MOTION_GRID: " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MOTION_GRID"));
   ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet(), pool_.get());
@@ -306,7 +307,8 @@ Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
 Status Decoder::DecodeAppearance(const uint8_t* payload, size_t size) {
   ByteReader reader(payload, size);
   AppearanceUpdate update(options_.allocator);
-  Status status = ReadAppearanceUpdate(&reader, static_cast<uint32_t>(dynamic_->size()), &update);
+  Status status = ReadAppearanceUpdate(&reader, sequence_.rans_layout(),
+                                       static_cast<uint32_t>(dynamic_->size()), &update);
   if (!status.ok()) return Status(status.code(), "APPEARANCE: " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "APPEARANCE"));
   ApplyAppearanceUpdate(update, MutableDynamicSet());
@@ -321,7 +323,7 @@ Status Decoder::ReadSetChange(const uint8_t* payload, size_t size, const char* w
   if (*num_removed > n) return BitstreamError(prefix + "removes more Gaussians than exist");
   if (*num_removed > 0) {
     removed->resize(n);
-    Status status = ReadSymbolBlock(&reader, n, 0, 1, removed->data());
+    Status status = ReadSymbolBlock(&reader, sequence_.rans_layout(), n, 0, 1, removed->data());
     if (!status.ok()) return Status(status.code(), prefix + status.message());
     uint32_t ones = 0;
     for (int32_t flag : *removed) ones += static_cast<uint32_t>(flag);

@@ -85,55 +85,80 @@ class BucketDecoder {
   std::vector<uint16_t> first_symbols_;
 };
 
-// Runs the rANS decoder of spec 5.2 over the payload, writing min + symbol to out.
-template <typename Decoder>
+// Runs the rANS decoder of spec 5.2 with kStates interleaved states over the payload (symbol i
+// uses state i mod kStates), writing min + symbol to out. The payload holds at least
+// 4 * kStates bytes.
+template <uint32_t kStates, typename Decoder>
 Status DecodePayload(const uint8_t* p, const uint8_t* end, const Decoder& decoder, uint32_t count,
                      int32_t min, int32_t* out) {
-  uint32_t x = ByteReader::LoadU32(p);
-  p += 4;
+  uint32_t x[kStates];
+  for (uint32_t j = 0; j < kStates; ++j, p += 4) x[j] = ByteReader::LoadU32(p);
   // One decoding step with a bounds check on every renormalisation byte.
   auto checked_step = [&](uint32_t i) {
-    const uint32_t s = decoder.DecodeSymbol(&x);
-    while (x < kRansLow) {
+    uint32_t& state = x[i % kStates];
+    const uint32_t s = decoder.DecodeSymbol(&state);
+    while (state < kRansLow) {
       if (p == end) return false;
-      x = (x << 8) | *p++;
+      state = (state << 8) | *p++;
     }
     out[i] = min + static_cast<int32_t>(s);
     return true;
   };
   uint32_t i = 0;
-  // From a state >= L a step reads at most 2 bytes; only the initial state can be lower.
-  if (count > 0 && x < kRansLow) {
-    if (!checked_step(0)) return Error("rANS payload exhausted");
-    i = 1;
+  // From a state >= L a step reads at most 2 bytes; only the initial states can be lower.
+  for (; i < count && i < kStates; ++i) {
+    if (!checked_step(i)) return Error("rANS payload exhausted");
   }
-  // Unchecked steps, as many as the remaining bytes cover at 2 bytes per step.
+  // Unchecked rounds of one symbol per state, as many as the remaining bytes cover at 2 bytes
+  // per step. The states' symbols are decoded first (independent chains), then renormalised in
+  // symbol order, which is the order their bytes follow in the payload.
   for (;;) {
     const size_t safe = static_cast<size_t>(end - p) / 2;
     const uint32_t stop = count - i < safe ? count : i + static_cast<uint32_t>(safe);
-    if (stop == i) break;
-    for (; i < stop; ++i) {
-      const uint32_t s = decoder.DecodeSymbol(&x);
-      // Branches beat selects here: skewed sources predict well, and selects lengthen the
-      // dependency chain through x on every symbol.
-      if (x < kRansLow) {
-        x = (x << 8) | *p++;
-        if (x < kRansLow) x = (x << 8) | *p++;
+    if (stop - i < kStates) break;
+    for (; i + kStates <= stop; i += kStates) {
+      uint32_t s[kStates];
+      for (uint32_t j = 0; j < kStates; ++j) s[j] = decoder.DecodeSymbol(&x[j]);
+      for (uint32_t j = 0; j < kStates; ++j) {
+        // Branches beat selects here: skewed sources predict well, and selects lengthen the
+        // dependency chain through x on every symbol.
+        if (x[j] < kRansLow) {
+          x[j] = (x[j] << 8) | *p++;
+          if (x[j] < kRansLow) x[j] = (x[j] << 8) | *p++;
+        }
+        out[i + j] = min + static_cast<int32_t>(s[j]);
       }
-      out[i] = min + static_cast<int32_t>(s);
     }
   }
   for (; i < count; ++i) {
     if (!checked_step(i)) return Error("rANS payload exhausted");
   }
-  if (x != kRansLow) return Error("final rANS state " + std::to_string(x) + ", expected 8388608");
+  for (uint32_t j = 0; j < kStates; ++j) {
+    if (x[j] != kRansLow) {
+      return Error("final rANS state " + std::to_string(j) + " is " + std::to_string(x[j]) +
+                   ", expected 8388608");
+    }
+  }
   if (p != end) return Error(std::to_string(end - p) + " rANS payload bytes left over");
   return Status::Ok();
 }
 
+// Decodes the payload with the bucket size that suits the count and the block's states.
+template <uint32_t kStates>
+Status DecodeBlock(const uint8_t* payload, const uint8_t* end, const std::vector<SymbolInfo>& info,
+                   uint32_t count, int32_t min, int32_t* out) {
+  if (count < kMinCountForFineBuckets) {
+    return DecodePayload<kStates>(payload, end, BucketDecoder<kCoarseBucketBits>(info), count, min,
+                                  out);
+  }
+  return DecodePayload<kStates>(payload, end, BucketDecoder<kFineBucketBits>(info), count, min,
+                                out);
+}
+
 }  // namespace
 
-Status ReadSymbolBlock(ByteReader* reader, uint32_t count, int32_t lo, int32_t hi, int32_t* out) {
+Status ReadSymbolBlock(ByteReader* reader, RansLayout layout, uint32_t count, int32_t lo,
+                       int32_t hi, int32_t* out) {
   uint32_t n;
   if (!reader->ReadVarUint(&n)) return Error("truncated alphabet_size");
   if (n == 0) return Error("alphabet_size 0");
@@ -195,17 +220,21 @@ Status ReadSymbolBlock(ByteReader* reader, uint32_t count, int32_t lo, int32_t h
 
   uint32_t payload_size;
   if (!reader->ReadVarUint(&payload_size)) return Error("truncated payload_size");
-  if (payload_size < 4) return Error("payload_size " + std::to_string(payload_size) + " below 4");
+  const uint32_t states = RansStates(layout, count);
+  if (payload_size < 4 * states) {
+    return Error("payload_size " + std::to_string(payload_size) + " below " +
+                 std::to_string(4 * states));
+  }
   const uint8_t* payload;
   if (!reader->ReadBytes(payload_size, &payload)) {
     return Error("payload_size " + std::to_string(payload_size) + " exceeds the " +
                  std::to_string(reader->remaining()) + " remaining bytes");
   }
   const uint8_t* end = payload + payload_size;
-  if (count < kMinCountForFineBuckets) {
-    return DecodePayload(payload, end, BucketDecoder<kCoarseBucketBits>(info), count, min, out);
+  if (states == kRansInterleavedStates) {
+    return DecodeBlock<kRansInterleavedStates>(payload, end, info, count, min, out);
   }
-  return DecodePayload(payload, end, BucketDecoder<kFineBucketBits>(info), count, min, out);
+  return DecodeBlock<1>(payload, end, info, count, min, out);
 }
 
 }  // namespace m4d

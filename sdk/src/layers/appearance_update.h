@@ -10,6 +10,7 @@
 #include "common/byte_reader.h"
 #include "common/hooked_allocator.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 
 namespace m4d {
 
@@ -21,7 +22,8 @@ struct AppearanceUpdate {
 };
 
 // Reads an APPEARANCE payload for a dynamic set of `count` Gaussians.
-Status ReadAppearanceUpdate(ByteReader* reader, uint32_t count, AppearanceUpdate* update);
+Status ReadAppearanceUpdate(ByteReader* reader, RansLayout layout, uint32_t count,
+                            AppearanceUpdate* update);
 
 }  // namespace m4d
 

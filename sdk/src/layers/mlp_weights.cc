@@ -12,13 +12,13 @@ namespace m4d {
 namespace {
 
 // Reads a step and a symbol block of `count` values and dequantizes them (spec 4.3).
-Status ReadTensor(ByteReader* reader, const std::string& what, std::vector<int32_t>* scratch,
-                  std::vector<float>* out) {
+Status ReadTensor(ByteReader* reader, RansLayout layout, const std::string& what,
+                  std::vector<int32_t>* scratch, std::vector<float>* out) {
   float step;
   if (!reader->ReadFiniteF32(&step)) return BitstreamError(what + ": bad or missing step");
   scratch->resize(out->size());
-  Status status = ReadSymbolBlock(reader, static_cast<uint32_t>(out->size()), -kMaxSymbolMagnitude,
-                                  kMaxSymbolMagnitude, scratch->data());
+  Status status = ReadSymbolBlock(reader, layout, static_cast<uint32_t>(out->size()),
+                                  -kMaxSymbolMagnitude, kMaxSymbolMagnitude, scratch->data());
   if (!status.ok()) return Status(status.code(), what + ": " + status.message());
   for (size_t i = 0; i < out->size(); ++i) (*out)[i] = static_cast<float>((*scratch)[i]) * step;
   return Status::Ok();
@@ -38,14 +38,15 @@ std::vector<MlpLayer> MlpShapes(int feature_count, const MlpConfig& config) {
   return layers;
 }
 
-Status ReadMlpWeights(ByteReader* reader, int feature_count, const MlpConfig& config,
-                      MlpWeights* out) {
+Status ReadMlpWeights(ByteReader* reader, RansLayout layout, int feature_count,
+                      const MlpConfig& config, MlpWeights* out) {
   std::vector<MlpLayer> layers = MlpShapes(feature_count, config);
   std::vector<int32_t> scratch;
   for (size_t j = 0; j < layers.size(); ++j) {
     const std::string layer = "layer " + std::to_string(j);
-    M4D_RETURN_IF_ERROR(ReadTensor(reader, layer + " weights", &scratch, &layers[j].weights));
-    M4D_RETURN_IF_ERROR(ReadTensor(reader, layer + " biases", &scratch, &layers[j].biases));
+    M4D_RETURN_IF_ERROR(
+        ReadTensor(reader, layout, layer + " weights", &scratch, &layers[j].weights));
+    M4D_RETURN_IF_ERROR(ReadTensor(reader, layout, layer + " biases", &scratch, &layers[j].biases));
   }
   out->layers = std::move(layers);
   return Status::Ok();

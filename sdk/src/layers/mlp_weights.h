@@ -6,6 +6,7 @@
 
 #include "common/byte_reader.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 #include "layers/motion_config.h"
 
 namespace m4d {
@@ -25,8 +26,8 @@ struct MlpWeights {
 std::vector<MlpLayer> MlpShapes(int feature_count, const MlpConfig& config);
 
 // Reads an MLP_WEIGHTS payload.
-Status ReadMlpWeights(ByteReader* reader, int feature_count, const MlpConfig& config,
-                      MlpWeights* out);
+Status ReadMlpWeights(ByteReader* reader, RansLayout layout, int feature_count,
+                      const MlpConfig& config, MlpWeights* out);
 
 }  // namespace m4d
 

@@ -46,7 +46,7 @@ const int32_t* FillBrick(const BrickBox& box, int r, int c, const int32_t* src, 
 // Reads level(l) (spec 4.4). `flags` and `coded` are scratch buffers kept across levels;
 // `nonzero` holds the flags of the level's previous frame, so only the bricks that were
 // coded then and are not now need zeroing (mostly-zero grids stay cheap to decode).
-Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags,
+Status ReadLevel(ByteReader* reader, RansLayout layout, int l, int r, int c, Buffer<int32_t>* flags,
                  Buffer<int32_t>* coded, float* step, Buffer<int16_t>* values,
                  Buffer<int32_t>* nonzero) {
   auto error = [l](const Status& status, const char* what) {
@@ -57,7 +57,7 @@ Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags
   const int n = (r + kBrickSize - 1) / kBrickSize;
   const uint32_t num_bricks = static_cast<uint32_t>(n) * n * n;
   flags->resize(num_bricks);
-  Status status = ReadSymbolBlock(reader, num_bricks, 0, 1, flags->data());
+  Status status = ReadSymbolBlock(reader, layout, num_bricks, 0, 1, flags->data());
   if (!status.ok()) return error(status, " brick flags: ");
 
   // V_l: bounded by R_l^3 * C_l, which the sequence header limits.
@@ -72,7 +72,7 @@ Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags
   }
   const uint32_t count = static_cast<uint32_t>(voxels * static_cast<uint64_t>(c));
   coded->resize(count);
-  status = ReadSymbolBlock(reader, count, -32768, 32767, coded->data());
+  status = ReadSymbolBlock(reader, layout, count, -32768, 32767, coded->data());
   if (!status.ok()) return error(status, " values: ");
 
   const size_t rs = static_cast<size_t>(r);
@@ -102,7 +102,8 @@ Status ReadLevel(ByteReader* reader, int l, int r, int c, Buffer<int32_t>* flags
 
 }  // namespace
 
-Status ReadMotionGrid(ByteReader* reader, const GridConfig& config, MotionGrid* grid) {
+Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& config,
+                      MotionGrid* grid) {
   for (int a = 0; a < 3; ++a) {
     if (!reader->ReadFiniteF32(&grid->box_min[a])) {
       return BitstreamError("grid: bad or missing box_min");
@@ -117,8 +118,8 @@ Status ReadMotionGrid(ByteReader* reader, const GridConfig& config, MotionGrid* 
   Buffer<int32_t> flags(alloc);
   Buffer<int32_t> coded(alloc);
   for (int l = 0; l < config.num_levels; ++l) {
-    M4D_RETURN_IF_ERROR(ReadLevel(reader, l, config.resolution[l], config.channels[l], &flags,
-                                  &coded, &grid->step[l], &grid->values[l],
+    M4D_RETURN_IF_ERROR(ReadLevel(reader, layout, l, config.resolution[l], config.channels[l],
+                                  &flags, &coded, &grid->step[l], &grid->values[l],
                                   &grid->nonzero_bricks[l]));
   }
   // Levels the configuration no longer has give their memory back.

@@ -8,6 +8,7 @@
 #include "common/byte_reader.h"
 #include "common/hooked_allocator.h"
 #include "common/status.h"
+#include "entropy/symbol_block_reader.h"
 #include "layers/motion_config.h"
 
 namespace m4d {
@@ -30,7 +31,8 @@ struct MotionGrid {
 };
 
 // Reads a MOTION_GRID payload into *grid (resizing its level buffers to the configuration).
-Status ReadMotionGrid(ByteReader* reader, const GridConfig& config, MotionGrid* grid);
+Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& config,
+                      MotionGrid* grid);
 
 }  // namespace m4d
 
