@@ -88,7 +88,10 @@ void BM_ReadGaussianSet(benchmark::State& state) {
   for (auto _ : state) {
     ByteReader reader(bytes.data(), bytes.size());
     GaussianSet set;
-    if (!ReadGaussianSet(&reader, sh_degree, kMaxGaussiansPerSet, &set).ok()) std::abort();
+    if (!ReadGaussianSet(&reader, sh_degree, RotationCoding::kSmallestThree, kMaxGaussiansPerSet,
+                         &set)
+             .ok())
+      std::abort();
     benchmark::DoNotOptimize(set.sh.data());
   }
   SetBytesPerGaussian(state, bytes.size());

@@ -75,6 +75,7 @@ streams=(
   "synth_sh0_dependent_no_update|--gops 2 --frames-per-gop 2 --static 800 --dynamic 300 --sh-degree 0 --motion-fraction 0.003 --seed 32 --dependent-gops"
   "synth_sh1_appearance|--gops 2 --frames-per-gop 4 --static 600 --dynamic 1500 --sh-degree 1 --motion-fraction 0.002 --seed 34 --appearance-fraction 0.3"
   "synth_v03_appearance|--gops 2 --frames-per-gop 3 --static 600 --dynamic 1500 --sh-degree 1 --motion-fraction 0.002 --seed 35 --appearance-fraction 0.3 --dependent-gops --bitstream-minor 3"
+  "synth_v04_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 36 --dependent-gops --bitstream-minor 4"
   "synth_v02_sh2|--gops 2 --frames-per-gop 3 --static 600 --dynamic 200 --sh-degree 2 --motion-fraction 0.002 --seed 33 --bitstream-minor 2"
   "synth_max_levels_width|--gops 2 --frames-per-gop 2 --static 300 --dynamic 200 --sh-degree 2 --grid 8,8,16,8,32,8,64,8 --mlp-width 256 --bits 1 --motion-fraction 0.002 --seed 22"
 )

@@ -21,6 +21,8 @@
 #include "common/spec_limits.h"
 #include "layers/gaussian_set_reader.h"
 #include "layers/gaussian_set_writer.h"
+#include "layers/rotation_coding.h"
+#include "layers/smallest_three.h"
 
 namespace m4d {
 namespace {
@@ -91,13 +93,17 @@ struct ParsedSet {
   std::vector<uint8_t> draco;
 };
 
-ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree) {
+constexpr RotationCoding kFour = RotationCoding::kFourComponents;
+constexpr RotationCoding kThree = RotationCoding::kSmallestThree;
+
+ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree,
+                RotationCoding rotation = kThree) {
   ParsedSet p;
   ByteReader r(bytes.data(), bytes.size());
   EXPECT_TRUE(r.ReadVarUint(&p.count));
   p.groups_offset = r.position();
   for (int group = 0; group < kNumGaussianGroups; ++group) {
-    const int components = GaussianGroupComponents(group, sh_degree);
+    const int components = CodedGroupComponents(group, sh_degree, rotation);
     if (components == 0) continue;
     ParsedGroup g;
     g.offset = r.position();
@@ -142,10 +148,15 @@ std::vector<uint8_t> Write(const GaussianSet& set, const GaussianQuantization& q
   return bytes;
 }
 
+GaussianQuantization FourComponents(GaussianQuantization q) {
+  q.rotation_coding = kFour;
+  return q;
+}
+
 Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out,
-            uint32_t max_count = kMaxGaussiansPerSet) {
+            uint32_t max_count = kMaxGaussiansPerSet, RotationCoding rotation = kThree) {
   ByteReader r(bytes.data(), bytes.size());
-  const Status status = ReadGaussianSet(&r, sh_degree, max_count, out);
+  const Status status = ReadGaussianSet(&r, sh_degree, rotation, max_count, out);
   if (status.ok()) {
     EXPECT_EQ(r.remaining(), 0u);
   }
@@ -159,11 +170,48 @@ float Dequantize(float min, uint32_t q, float step) {
 }
 bool SameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
 
+// The coded components of a set: its own values, except smallest-three rotations, which are
+// the three components SplitSmallestThree keeps of the original Gaussian's quaternion, of the
+// original (split) or of the decoded quaternion (the three other than the original's index).
+struct CodedValues {
+  const GaussianSet& set;
+  RotationCoding rotation;
+  std::vector<float> abc;  // of the original
+  std::vector<int> index;  // of the original
+  CodedValues(const GaussianSet& original, RotationCoding coding)
+      : set(original), rotation(coding) {
+    abc.resize(3 * original.size());
+    const float* first = original.rotations.data();
+    bool identical = true;
+    for (size_t i = 0; i < original.size(); ++i) {
+      const float* q = &original.rotations[4 * i];
+      index.push_back(SplitSmallestThree(q, &abc[3 * i]));
+      identical = identical && std::equal(q, q + 4, first);
+    }
+    if (identical) {  // one rotation for all is coded with index 0 (a constant group)
+      for (size_t i = 0; i < original.size(); ++i) SplitAt(first, 0, &abc[3 * i]);
+      index.assign(original.size(), 0);
+    }
+  }
+  float Original(int group, size_t i, int r) const {
+    if (group == kGroupRotation && rotation == kThree) return abc[3 * i + r];
+    return Component(set, group, i, r);
+  }
+  float Decoded(const GaussianSet& decoded, int group, size_t j, size_t i, int r) const {
+    if (group == kGroupRotation && rotation == kThree) {
+      return decoded.rotations[4 * j + (r < index[i] ? r : r + 1)];
+    }
+    return Component(decoded, group, j, r);
+  }
+};
+
 // Checks that `decoded` is `original` quantized as the header says: every value is the spec
-// formula of some q < 2^bits, within step / 2 (plus f32 rounding) of the original Gaussian's.
+// formula of some q < 2^bits, within step / 2 (plus f32 rounding) of the original Gaussian's;
+// a smallest-three rotation's fourth component is the one the spec recovers.
 void ExpectRoundTrip(const GaussianSet& original, const std::vector<uint8_t>& bytes,
-                     const GaussianSet& decoded) {
-  const ParsedSet p = Parse(bytes, original.sh_degree);
+                     const GaussianSet& decoded, RotationCoding rotation = kThree) {
+  const ParsedSet p = Parse(bytes, original.sh_degree, rotation);
+  const CodedValues coded(original, rotation);
   ASSERT_EQ(decoded.size(), original.size());
   ASSERT_EQ(decoded.sh_degree, original.sh_degree);
   std::vector<bool> seen(original.size());
@@ -172,13 +220,23 @@ void ExpectRoundTrip(const GaussianSet& original, const std::vector<uint8_t>& by
     ASSERT_LT(i, original.size());
     ASSERT_FALSE(seen[i]) << "Gaussian " << i << " decoded twice";
     seen[i] = true;
+    if (rotation == kThree) {
+      float composed[4];
+      const int largest = p.groups[kGroupRotation].bits > 0 ? coded.index[i] : 0;
+      float abc[3];
+      for (int r = 0, k = 0; r < 4; ++r) {
+        if (r != largest) abc[k++] = decoded.rotations[4 * j + r];
+      }
+      ComposeSmallestThree(abc, largest, composed);
+      for (int r = 0; r < 4; ++r) ASSERT_TRUE(SameBits(composed[r], decoded.rotations[4 * j + r]));
+    }
     int k = 0;
     for (int group = 0; group < kNumGaussianGroups; ++group) {
-      const int components = GaussianGroupComponents(group, original.sh_degree);
+      const int components = CodedGroupComponents(group, original.sh_degree, rotation);
       if (components == 0) continue;
       const ParsedGroup& g = p.groups[k++];
       for (int r = 0; r < components; ++r) {
-        const float v = Component(decoded, group, j, r), min = g.Min(r), step = g.Step(r);
+        const float v = coded.Decoded(decoded, group, j, i, r), min = g.Min(r), step = g.Step(r);
         uint32_t q = 0;
         if (g.bits > 0 && step > 0) {
           q = static_cast<uint32_t>(std::max(0.0, std::round((double(v) - min) / step)));
@@ -188,7 +246,7 @@ void ExpectRoundTrip(const GaussianSet& original, const std::vector<uint8_t>& by
           exact = exact || SameBits(v, Dequantize(min, c, step));
         }
         ASSERT_TRUE(exact) << "group " << group << " component " << r << ": " << v;
-        const float o = Component(original, group, i, r);
+        const float o = coded.Original(group, i, r);
         const float ulp = std::max({std::fabs(o), std::fabs(min), std::fabs(v)}) *
                           std::numeric_limits<float>::epsilon();
         ASSERT_LE(std::fabs(double(v) - o), 0.5 * step + 4 * ulp)
@@ -201,9 +259,10 @@ void ExpectRoundTrip(const GaussianSet& original, const std::vector<uint8_t>& by
 void RoundTrip(const GaussianSet& set, const GaussianQuantization& q) {
   const std::vector<uint8_t> bytes = Write(set, q);
   GaussianSet decoded;
-  const Status status = Read(bytes, set.sh_degree, &decoded);
+  const Status status =
+      Read(bytes, set.sh_degree, &decoded, kMaxGaussiansPerSet, q.rotation_coding);
   ASSERT_TRUE(status.ok()) << status.message();
-  ExpectRoundTrip(set, bytes, decoded);
+  ExpectRoundTrip(set, bytes, decoded, q.rotation_coding);
 }
 
 TEST(GaussianSetCodingTest, RoundTripsEveryShDegree) {
@@ -212,6 +271,7 @@ TEST(GaussianSetCodingTest, RoundTripsEveryShDegree) {
     GaussianSet set = RandomSet(3000, degree, 10 + degree);
     SetIds(&set);
     RoundTrip(set, WithIds(GaussianQuantization()));
+    RoundTrip(set, WithIds(FourComponents(GaussianQuantization())));
   }
 }
 
@@ -224,16 +284,18 @@ TEST(GaussianSetCodingTest, RoundTripsEveryBitWidthAndSpeed) {
     q.position_bits = q.log_scale_bits = q.rotation_bits = q.sh_dc_bits = q.sh_rest_bits = bits;
     q.draco_speed = bits % 11;
     RoundTrip(set, WithIds(q));
+    RoundTrip(set, WithIds(FourComponents(q)));
   }
 }
 
 TEST(GaussianSetCodingTest, DefaultQuantizationRoundTrips) {
   // Without ids: compare each component's values as a multiset.
+  // Four-component rotations, whose values are each quantized on their own.
   const GaussianSet set = RandomSet(2000, 3, 3);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = Write(set, FourComponents(GaussianQuantization()));
   GaussianSet decoded;
-  ASSERT_TRUE(Read(bytes, 3, &decoded).ok());
-  const ParsedSet p = Parse(bytes, 3);
+  ASSERT_TRUE(Read(bytes, 3, &decoded, kMaxGaussiansPerSet, kFour).ok());
+  const ParsedSet p = Parse(bytes, 3, kFour);
   ASSERT_EQ(decoded.size(), set.size());
   int k = 0;
   for (int group = 0; group < kNumGaussianGroups; ++group) {
@@ -259,29 +321,33 @@ TEST(GaussianSetCodingTest, DefaultQuantizationRoundTrips) {
 
 TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
   for (int degree : {0, 1, 3}) {
-    SCOPED_TRACE(degree);
-    GaussianSet set = RandomSet(1500, degree, 20 + degree);
-    SetIds(&set);
-    GaussianQuantization q = WithIds(GaussianQuantization());
-    q.sh_rest_bits = 3;
-    for (size_t i = 0; i < 10; ++i) set.sh[i * set.sh_floats() + 3] = 0.0f;  // a group's zeros
-    GaussianSet decoded, quantized = set;
-    ASSERT_TRUE(ReconstructGaussianSet(set, q, &decoded).ok());
-    ASSERT_TRUE(QuantizeGaussianSet(q, &quantized).ok());
-    ASSERT_EQ(quantized.size(), set.size());
-    EXPECT_NE(quantized.positions, set.positions);
-    for (size_t j = 0; j < decoded.size(); ++j) {
-      const size_t i = static_cast<size_t>(std::lround(decoded.opacity_logits[j]));  // its id
-      ASSERT_LT(i, set.size());
-      for (int group = 0; group < kNumGaussianGroups; ++group) {
-        for (int r = 0; r < GaussianGroupComponents(group, degree); ++r) {
-          ASSERT_TRUE(SameBits(Component(quantized, group, i, r), Component(decoded, group, j, r)))
-              << "group " << group << " Gaussian " << i;
+    for (RotationCoding rotation : {kThree, kFour}) {
+      SCOPED_TRACE(degree);
+      GaussianSet set = RandomSet(1500, degree, 20 + degree);
+      SetIds(&set);
+      GaussianQuantization q = WithIds(GaussianQuantization());
+      q.rotation_coding = rotation;
+      q.sh_rest_bits = 3;
+      for (size_t i = 0; i < 10; ++i) set.sh[i * set.sh_floats() + 3] = 0.0f;  // a group's zeros
+      GaussianSet decoded, quantized = set;
+      ASSERT_TRUE(ReconstructGaussianSet(set, q, &decoded).ok());
+      ASSERT_TRUE(QuantizeGaussianSet(q, &quantized).ok());
+      ASSERT_EQ(quantized.size(), set.size());
+      EXPECT_NE(quantized.positions, set.positions);
+      for (size_t j = 0; j < decoded.size(); ++j) {
+        const size_t i = static_cast<size_t>(std::lround(decoded.opacity_logits[j]));  // its id
+        ASSERT_LT(i, set.size());
+        for (int group = 0; group < kNumGaussianGroups; ++group) {
+          for (int r = 0; r < GaussianGroupComponents(group, degree); ++r) {
+            ASSERT_TRUE(
+                SameBits(Component(quantized, group, i, r), Component(decoded, group, j, r)))
+                << "group " << group << " Gaussian " << i;
+          }
         }
       }
-    }
-    if (degree > 0) {
-      for (size_t i = 0; i < 10; ++i) EXPECT_EQ(quantized.sh[i * set.sh_floats() + 3], 0.0f);
+      if (degree > 0) {
+        for (size_t i = 0; i < 10; ++i) EXPECT_EQ(quantized.sh[i * set.sh_floats() + 3], 0.0f);
+      }
     }
   }
   GaussianSet bad = RandomSet(10, 1, 1);
@@ -656,7 +722,8 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
     q.position_bits = position_bits;
     const std::vector<uint8_t> bytes = Write(set, q);
     const ParsedSet p = Parse(bytes, 0);
-    const size_t coded = p.groups.size() - (position_bits == 0 ? 1 : 0);
+    // The rotation's index is an attribute of its own, without a group header.
+    const size_t coded = p.groups.size() + 1 - (position_bits == 0 ? 1 : 0);
     size_t at = 17 + 6 * coded;      // the first attribute's data
     at += p.draco[at] == 0 ? 2 : 1;  // prediction (and its transform)
     at += 1;                         // compressed
@@ -702,6 +769,113 @@ TEST(GaussianSetCodingTest, SurvivesFlippedBytesInTheDracoPayload) {
     }
     EXPECT_GT(errors, 0) << trials << " trials";
   }
+}
+
+TEST(GaussianSetCodingTest, SmallestThreeKeepsTheRotationInFewerBytes) {
+  GaussianSet set = RandomSet(5000, 1, 41);
+  SetIds(&set);
+  GaussianQuantization q = WithIds(GaussianQuantization());
+  const std::vector<uint8_t> three = Write(set, q);
+  const std::vector<uint8_t> four = Write(set, FourComponents(q));
+  EXPECT_LT(three.size() + 5000 / 8, four.size());  // at least a bit per Gaussian
+  GaussianSet decoded;
+  ASSERT_TRUE(Read(three, 1, &decoded).ok());
+  // Each decoded quaternion is the unit one (up to its sign) within the step of 10 bits.
+  for (size_t j = 0; j < decoded.size(); ++j) {
+    const size_t i = static_cast<size_t>(std::lround(decoded.opacity_logits[j]));
+    const float* o = &set.rotations[4 * i];
+    const float* d = &decoded.rotations[4 * j];
+    const double norm = std::sqrt(double(o[0]) * o[0] + double(o[1]) * o[1] + double(o[2]) * o[2] +
+                                  double(o[3]) * o[3]);
+    double dot = 0;
+    for (int r = 0; r < 4; ++r) dot += d[r] * o[r] / norm;
+    ASSERT_GT(std::fabs(dot), 1.0 - 1e-4) << i;
+  }
+}
+
+TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
+  GaussianSet set = RandomSet(200, 0, 42);
+  auto expect_rotation = [&](const GaussianSet& decoded, size_t i, std::vector<float> q) {
+    EXPECT_EQ(std::vector<float>(&decoded.rotations[4 * i], &decoded.rotations[4 * i + 4]), q) << i;
+  };
+  // One rotation for all, not the identity: coded with index 0, as a constant group.
+  for (size_t i = 0; i < set.size(); ++i) {
+    const float turned[4] = {0, -2, 0, 0};
+    std::memcpy(&set.rotations[4 * i], turned, sizeof(turned));
+  }
+  std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
+  GaussianSet decoded;
+  ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
+  for (size_t i = 0; i < set.size(); ++i) expect_rotation(decoded, i, {0, -1, 0, 0});
+  // Two rotations whose three smallest components are equal: the index must travel.
+  SetIds(&set);
+  for (size_t i = 0; i < set.size(); i += 2) {
+    const float identity[4] = {1, 0, 0, 0};
+    std::memcpy(&set.rotations[4 * i], identity, sizeof(identity));
+  }
+  bytes = Write(set, WithIds(GaussianQuantization()));
+  EXPECT_GT(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
+  ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
+  for (size_t j = 0; j < set.size(); ++j) {
+    const size_t i = static_cast<size_t>(std::lround(decoded.opacity_logits[j]));
+    expect_rotation(decoded, j,
+                    i % 2 == 0 ? std::vector<float>{1, 0, 0, 0} : std::vector<float>{0, 1, 0, 0});
+  }
+  std::fill(set.rotations.begin(), set.rotations.end(), 0.0f);  // no rotation: the identity
+  bytes = Write(set, GaussianQuantization());
+  EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
+  ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
+  expect_rotation(decoded, 0, {1, 0, 0, 0});
+}
+
+TEST(GaussianSetCodingTest, ComposeSmallestThreeRoundsEachOperation) {
+  const float abc[3] = {0.6f, -0.1f, 0.3f};
+  float q[4];
+  ComposeSmallestThree(abc, 2, q);
+  float sum = abc[0] * abc[0];
+  sum += abc[1] * abc[1];
+  sum += abc[2] * abc[2];
+  EXPECT_TRUE(SameBits(q[2], std::sqrt(1.0f - sum)));
+  EXPECT_EQ(q[0], 0.6f);
+  EXPECT_EQ(q[1], -0.1f);
+  EXPECT_EQ(q[3], 0.3f);
+  const float too_long[3] = {0.75f, 0.75f, 0.0f};  // 1 - (a^2 + b^2 + c^2) < 0: clamped
+  ComposeSmallestThree(too_long, 0, q);
+  EXPECT_EQ(q[0], 0.0f);
+  ComposeSmallestThree(abc, 0, q);
+  // In place: abc aliasing q[0..2].
+  float in_place[4] = {0.6f, -0.1f, 0.3f, 9.0f};
+  ComposeSmallestThree(in_place, 0, in_place);
+  for (int r = 0; r < 4; ++r) EXPECT_TRUE(SameBits(in_place[r], q[r]));
+}
+
+TEST(GaussianSetCodingTest, RejectsARotationIndexAboveThree) {
+  GaussianSet set = RandomSet(100, 0, 43);
+  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const ParsedSet p = Parse(bytes, 0);
+  std::unique_ptr<draco::PointCloud> pc = DracoDecode(p.draco);
+  ASSERT_EQ(pc->num_attributes(), 6);  // position, scale, rotation, its index, opacity, DC
+  draco::PointAttribute* index = pc->attribute(3);
+  ASSERT_EQ(index->num_components(), 1);
+  for (uint8_t bad : {4, 255}) {
+    index->SetAttributeValue(draco::AttributeValueIndex(7), &bad);
+    const std::vector<uint8_t> draco =
+        DracoEncode(*pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, draco::PREDICTION_NONE);
+    GaussianSet decoded;
+    const Status status = Read(Reassemble(bytes, p, p.count, draco), 0, &decoded);
+    EXPECT_EQ(status.code(), M4D_ERR_BITSTREAM);
+    EXPECT_NE(status.message().find("rotation index"), std::string::npos) << status.message();
+  }
+  // The same payload with the index in range decodes: the refusal is the index's.
+  const uint8_t good = 3;
+  index->SetAttributeValue(draco::AttributeValueIndex(7), &good);
+  GaussianSet decoded;
+  EXPECT_TRUE(Read(Reassemble(bytes, p, p.count,
+                              DracoEncode(*pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING,
+                                          draco::PREDICTION_NONE)),
+                   0, &decoded)
+                  .ok());
 }
 
 }  // namespace

@@ -17,6 +17,9 @@
 #include <string>
 #include <vector>
 
+#include <draco/compression/decode.h>
+#include <draco/core/decoder_buffer.h>
+
 #include "m4d/m4d.h"
 
 namespace {
@@ -53,6 +56,8 @@ class Reader {
     return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
   }
   bool done() const { return pos_ == size_; }
+  // The next byte, or null at the end.
+  const uint8_t* Here() const { return pos_ < size_ ? data_ + pos_ : nullptr; }
 
  private:
   bool Need(size_t n) {
@@ -110,9 +115,14 @@ struct Walk {
     Add(set + "_count" + (count == 0 ? "=0" : ">0"));
     if (count == 0) return 0;
     const int k = (sh_degree + 1) * (sh_degree + 1);
-    const int components[6] = {3, 3, 4, 1, 3, 3 * (k - 1)};
+    const bool smallest_three = version_minor >= 5;
+    const int components[6] = {3, 3, smallest_three ? 3 : 4, 1, 3, 3 * (k - 1)};
+    int coded_before_rotation = 0;
+    uint32_t rotation_bits = 0;
     for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
       const uint32_t bits = r->U8(), per_component = r->U8();
+      if (g < 2 && bits > 0) ++coded_before_rotation;
+      if (g == 2) rotation_bits = bits;
       if (bits == 0) Add("bits=0");
       if (bits == 1) Add("bits=1");
       if (bits >= 2 && bits <= 8) Add("bits=2..8");
@@ -123,8 +133,32 @@ struct Walk {
       r->Skip(8u * (per_component ? components[g] : 1));
     }
     const uint32_t draco = r->VarUint();
+    if (smallest_three) {
+      Add(rotation_bits > 0 ? "rotation=smallest_three" : "rotation=smallest_three,bits=0");
+      if (rotation_bits > 0) RotationIndices(r->Here(), draco, coded_before_rotation + 1);
+    } else if (rotation_bits > 0) {
+      Add("rotation=four_components");
+    }
     r->Skip(draco);
     return count;
+  }
+
+  // 5.4: the indices of smallest-three rotations, Draco attribute `j` of the set's payload.
+  void RotationIndices(const uint8_t* payload, uint32_t size, int j) {
+    if (payload == nullptr) return;
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(payload), size);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodePointCloudFromBuffer(&buffer);
+    ASSERT_TRUE(decoded.ok());
+    const draco::PointAttribute* index = decoded.value()->attribute(j);
+    ASSERT_NE(index, nullptr);
+    ASSERT_EQ(index->num_components(), 1);
+    for (uint32_t i = 0; i < decoded.value()->num_points(); ++i) {
+      uint8_t k = 0;
+      index->ConvertValue<uint8_t>(index->mapped_index(draco::PointIndex(i)), &k);
+      Add("rotation_index=" + std::to_string(k));
+    }
   }
 
   void SequenceHeader(Reader* r) {

@@ -193,7 +193,8 @@ std::vector<Case> Cases() {
          const uint32_t crc = m4d::Crc32(p.data(), 20);
          for (int i = 0; i < 4; ++i) p[20 + i] = static_cast<uint8_t>(crc >> (8 * i));
        }},
-      {"unsupported_version", "M4D_ERR_UNSUPPORTED", "bitstream version 0.5 (the next minor)",
+      {"unsupported_version", "M4D_ERR_UNSUPPORTED",
+       "the bitstream minor version after the decoder's",
        SetPayloadByte(kSeq, 1, M4D_BITSTREAM_VERSION_MINOR + 1)},
       {"unsupported_profile", "M4D_ERR_UNSUPPORTED", "profile 1", SetPayloadByte(kSeq, 2, 1)},
       {"sh_degree_out_of_range", "M4D_ERR_BITSTREAM", "sh_degree 4", SetPayloadByte(kSeq, 3, 4)},

@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
   app.add_option(
          "--bitstream-minor", opt.bitstream_minor,
          "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs; 3: one "
-         "rANS state per symbol block)")
+         "rANS state per symbol block; 4: four-component rotations)")
       ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));

@@ -20,6 +20,7 @@
 
 #include "common/spec_limits.h"
 #include "layers/gaussian_set_reader.h"
+#include "layers/smallest_three.h"
 
 namespace m4d {
 namespace {
@@ -35,6 +36,8 @@ struct GroupPlan {
   std::vector<float> min, step;  // one pair per component, or one for all
   std::vector<uint32_t> q;       // [i][r] in coding order
   bool delta = false;            // Draco prediction: difference, else none
+  std::vector<float> owned;      // the values `source` points to when they are derived
+  bool rotation_index = false;   // the index attribute of smallest-three rotations
 };
 
 Status InvalidArg(const std::string& what) {
@@ -75,7 +78,7 @@ void SetSource(const GaussianSet& set, GroupPlan* plan) {
       plan->stride = 3;
       break;
     case kGroupRotation:
-      plan->source = set.rotations.data();
+      plan->source = set.rotations.data();  // replaced for smallest-three
       plan->stride = 4;
       break;
     case kGroupOpacity:
@@ -99,21 +102,62 @@ void SetSource(const GaussianSet& set, GroupPlan* plan) {
 // 38.36 unquantized); with it, 0.3 dB.
 bool HasZeroLevel(int group) { return group == kGroupRotation || group >= kGroupShRest; }
 
+Status CheckFinite(size_t n, const GroupPlan& plan) {
+  for (size_t i = 0; i < n; ++i) {
+    for (int r = 0; r < plan.components; ++r) {
+      if (!std::isfinite(plan.source[i * plan.stride + r])) {
+        return InvalidArg("non-finite value in group " + std::to_string(plan.group));
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// Smallest-three rotations (spec 5.4): the plan of the three smallest components of each unit
+// quaternion, and the plan of the dropped component's index, coded as a value with min 0 and
+// step 1 that the header does not carry.
+void PlanSmallestThree(const GaussianSet& set, GroupPlan* rotation, GroupPlan* index) {
+  const size_t n = set.size();
+  rotation->owned.resize(3 * n);
+  index->owned.resize(n);
+  bool identical = true;
+  for (size_t i = 0; i < n; ++i) {
+    const float* q = &set.rotations[4 * i];
+    index->owned[i] = static_cast<float>(SplitSmallestThree(q, &rotation->owned[3 * i]));
+    identical = identical && std::equal(q, q + 4, set.rotations.data());
+  }
+  // One rotation for all: index 0 makes the group constant (bits 0, nothing in Draco); w is
+  // then recovered to within a few f32 ulps of the unit norm, even where it is not the largest.
+  if (identical && index->owned[0] != 0.0f) {
+    for (size_t i = 0; i < n; ++i) SplitAt(set.rotations.data(), 0, &rotation->owned[3 * i]);
+    std::fill(index->owned.begin(), index->owned.end(), 0.0f);
+  }
+  rotation->components = 3;
+  rotation->source = rotation->owned.data();
+  rotation->stride = 3;
+  index->group = kGroupRotation;
+  index->components = 1;
+  index->source = index->owned.data();
+  index->stride = 1;
+  index->rotation_index = true;
+  index->per_component = true;
+  index->min = {0.0f};
+  index->step = {1.0f};
+}
+
 // Chooses bits, per_component and (min, step). Positions get their full range per axis; the
 // other groups share one step across components, which gives every component the same
 // absolute error (the lowest total squared error for the rate), some with a level at zero
 // (the largest value may then clamp, by at most half a step more). A group whose components are
 // each constant costs nothing: bits 0 and one min per component.
 Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
+  M4D_RETURN_IF_ERROR(CheckFinite(n, *plan));
   const int c = plan->components;
   std::vector<float> lo(c), hi(c);
   for (int r = 0; r < c; ++r) {
     float a = plan->source[r], b = plan->source[r];
     for (size_t i = 0; i < n; ++i) {
       const float v = plan->source[i * plan->stride + r];
-      if (!std::isfinite(v)) {
-        return InvalidArg("non-finite value in group " + std::to_string(plan->group));
-      }
       a = std::min(a, v);
       b = std::max(b, v);
     }
@@ -288,14 +332,30 @@ Status PlanGroups(const GaussianSet& set, const GaussianQuantization& quantizati
   }
   plans->clear();
   if (n == 0) return Status::Ok();
+  const bool smallest_three = quantization.rotation_coding == RotationCoding::kSmallestThree;
   for (int group = 0; group < kNumGaussianGroups; ++group) {
-    GroupPlan plan;
+    GroupPlan plan, index;
     plan.group = group;
     plan.components = GaussianGroupComponents(group, set.sh_degree);
     if (plan.components == 0) continue;
     SetSource(set, &plan);
-    M4D_RETURN_IF_ERROR(PlanQuantization(n, RequestedBits(group, quantization), &plan));
+    const int bits = RequestedBits(group, quantization);
+    const bool split = group == kGroupRotation && smallest_three;
+    if (split) {
+      M4D_RETURN_IF_ERROR(CheckFinite(n, plan));
+      PlanSmallestThree(set, &plan, &index);
+    }
+    M4D_RETURN_IF_ERROR(PlanQuantization(n, bits, &plan));
     plans->push_back(std::move(plan));
+    if (split) {
+      // With bits 0 every index is 0; constant components with other indices still need them.
+      const bool all_zero =
+          std::all_of(index.owned.begin(), index.owned.end(), [](float k) { return k == 0.0f; });
+      if (plans->back().bits == 0 && !all_zero) plans->back().bits = bits;
+      index.bits = plans->back().bits > 0 ? kRotationIndexBits : 0;
+      if (index.bits == 0) std::fill(index.owned.begin(), index.owned.end(), 0.0f);
+      plans->push_back(std::move(index));
+    }
   }
   return Status::Ok();
 }
@@ -325,6 +385,7 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
 
   out->WriteVarUint(static_cast<uint32_t>(n));
   for (const GroupPlan& plan : plans) {
+    if (plan.rotation_index) continue;
     out->WriteU8(static_cast<uint8_t>(plan.bits));
     out->WriteU8(plan.per_component ? 1 : 0);
     for (size_t p = 0; p < plan.min.size(); ++p) {
@@ -346,16 +407,33 @@ Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet
   M4D_RETURN_IF_ERROR(PlanGroups(*set, quantization, &plans));
   std::vector<uint32_t> order(set->size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
+  const GroupPlan* rotation_index = nullptr;
   for (GroupPlan& plan : plans) {
     Quantize(order, &plan);
+    if (plan.rotation_index) {
+      rotation_index = &plan;
+      continue;
+    }
+    // The set's own array; smallest-three rotations go to slots 0..2, composed below.
+    size_t stride = plan.stride;
     float* values = const_cast<float*>(plan.source);  // plan.source points into *set
+    if (!plan.owned.empty()) {
+      values = set->rotations.data();
+      stride = 4;
+    }
     for (size_t i = 0; i < order.size(); ++i) {
       for (int r = 0; r < plan.components; ++r) {
         const int p = plan.per_component ? r : 0;
         // As the decoder (spec 5.4): one f32 product, one f32 sum.
         const float product = static_cast<float>(plan.q[i * plan.components + r]) * plan.step[p];
-        values[i * plan.stride + r] = plan.min[p] + product;
+        values[i * stride + r] = plan.min[p] + product;
       }
+    }
+  }
+  if (rotation_index != nullptr) {
+    for (size_t i = 0; i < order.size(); ++i) {
+      ComposeSmallestThree(&set->rotations[4 * i], static_cast<int>(rotation_index->q[i]),
+                           &set->rotations[4 * i]);
     }
   }
   return Status::Ok();
@@ -367,7 +445,8 @@ Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization
   ByteWriter writer(&payload);
   M4D_RETURN_IF_ERROR(WriteGaussianSet(set, quantization, &writer));
   ByteReader reader(payload.data(), payload.size());
-  return ReadGaussianSet(&reader, set.sh_degree, kMaxGaussiansPerSet, decoded);
+  return ReadGaussianSet(&reader, set.sh_degree, quantization.rotation_coding, kMaxGaussiansPerSet,
+                         decoded);
 }
 
 }  // namespace m4d

@@ -6,6 +6,7 @@
 #include "common/byte_writer.h"
 #include "common/status.h"
 #include "layers/gaussian_set.h"
+#include "layers/rotation_coding.h"
 
 namespace m4d {
 
@@ -20,6 +21,8 @@ struct GaussianQuantization {
   int sh_rest_bits = 5;
   // Draco encoder speed 0 (best) .. 10 (fastest); always the sequential method (spec 5.5).
   int draco_speed = 5;
+  // The stream version's (SequenceHeader::rotation_coding): smallest-three from 0.5 on.
+  RotationCoding rotation_coding = RotationCoding::kSmallestThree;
 };
 
 // Writes gaussian_set() for `set` (its sh_degree must be the sequence's).

@@ -24,6 +24,14 @@ DecoderOptions ClosedLoopOptions() {
 StreamWriter::StreamWriter(const StreamWriterOptions& options)
     : options_(options), decoder_(ClosedLoopOptions()) {}
 
+// Sets are coded with the rotation coding of the sequence's version, whatever the options say:
+// the encoder's reconstructions come from decoding what is written.
+GaussianQuantization StreamWriter::ForStream(const GaussianQuantization& quantization) const {
+  GaussianQuantization coded = quantization;
+  coded.rotation_coding = options_.sequence.rotation_coding();
+  return coded;
+}
+
 Status StreamWriter::Emit(uint8_t type, bool end_of_frame, const std::vector<uint8_t>& payload) {
   if (payload.size() > kMaxPayloadSize) {
     return LimitError("packet payload of " + std::to_string(payload.size()) + " bytes");
@@ -58,7 +66,7 @@ Status StreamWriter::WriteKeyframe(const GaussianSet& static_set, const Gaussian
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_SEQUENCE_HEADER, false, payload));
 
   payload.clear();
-  M4D_RETURN_IF_ERROR(WriteGaussianSet(static_set, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(static_set, ForStream(options_.quantization), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_STATIC, false, payload));
 
   return WriteDynamicAndMlp(dynamic_set, mlp, recon);
@@ -68,7 +76,7 @@ Status StreamWriter::WriteDynamicAndMlp(const GaussianSet& dynamic_set, const Ml
                                         DecodedFrame* recon) {
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(WriteGaussianSet(dynamic_set, options_.quantization, &writer));
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(dynamic_set, ForStream(options_.quantization), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_KEYFRAME_DYNAMIC, false, payload));
 
   payload.clear();
@@ -166,7 +174,7 @@ Status StreamWriter::WriteSetChange(const std::vector<uint8_t>& removed, const G
   if (num_removed > 0)
     M4D_RETURN_IF_ERROR(
         WriteSymbolBlock(flags.data(), flags.size(), options_.sequence.rans_layout(), &writer));
-  return WriteGaussianSet(added, quantization, &writer);
+  return WriteGaussianSet(added, ForStream(quantization), &writer);
 }
 
 }  // namespace m4d

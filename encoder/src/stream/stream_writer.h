@@ -83,6 +83,7 @@ class StreamWriter {
   // num_removed, the flags when any, the added set (spec 4.5).
   Status WriteSetChange(const std::vector<uint8_t>& removed, const GaussianSet& added,
                         const GaussianQuantization& quantization, std::vector<uint8_t>* payload);
+  GaussianQuantization ForStream(const GaussianQuantization& quantization) const;
   Status WriteDynamicAndMlp(const GaussianSet& dynamic_set, const MlpWeights& mlp,
                             DecodedFrame* recon);
 

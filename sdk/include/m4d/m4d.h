@@ -52,7 +52,7 @@ extern "C" {
 #define M4D_VERSION_MINOR 5
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 4 /* decodes 0.2 and 0.3 streams too */
+#define M4D_BITSTREAM_VERSION_MINOR 5 /* decodes 0.2, 0.3 and 0.4 streams too */
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0

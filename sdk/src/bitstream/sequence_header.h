@@ -9,11 +9,13 @@
 #include "common/status.h"
 #include "entropy/symbol_block_reader.h"
 #include "layers/motion_config.h"
+#include "layers/rotation_coding.h"
 
 namespace m4d {
 
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
-// keyframes, 0.3 is 0.4 without interleaved rANS states; spec 10).
+// keyframes, 0.3 is 0.4 without interleaved rANS states, 0.4 is 0.5 without smallest-three
+// rotations; spec 10).
 constexpr int kOldestBitstreamMinor = 2;
 
 // True when the version is one this decoder implements.
@@ -39,6 +41,10 @@ struct SequenceHeader {
   // Interleaved rANS states exist from 0.4 on.
   RansLayout rans_layout() const {
     return version_minor >= 4 ? RansLayout::kInterleaved : RansLayout::kSingleState;
+  }
+  // Smallest-three rotations exist from 0.5 on.
+  RotationCoding rotation_coding() const {
+    return version_minor >= 5 ? RotationCoding::kSmallestThree : RotationCoding::kFourComponents;
   }
 };
 

@@ -35,11 +35,13 @@ constexpr uint32_t kDracoMaxRawSymbols = 1u << 18;
 constexpr uint32_t kDracoMaxTagSymbols = 32;
 constexpr uint8_t kDracoMaxRawBitLength = 18;
 
-// One attribute group's quantization (spec 5.4), (min, step) expanded to every component.
+// One attribute group's quantization (spec 5.4), (min, step) expanded to every component; or
+// the index attribute of smallest-three rotations, which has no (min, step).
 struct GroupCoding {
   int group = 0;
   int components = 0;
   int bits = 0;
+  bool rotation_index = false;
   float min[kMaxGroupComponents];
   float step[kMaxGroupComponents];
 };
@@ -258,11 +260,25 @@ const uint8_t* AttributeValues(const draco::PointCloud& pc, int j, const GroupCo
   return att->buffer()->data();
 }
 
+// Rotations coded as their three smallest components (spec 5.4): the three were dequantized
+// into slots 0..2 of each quaternion; `index` (null when the rotation group has bits 0, which
+// means index 0 throughout) places them and the recovered largest component.
+Status ComposeRotations(const uint8_t* index, uint32_t count, float* rotations) {
+  for (uint32_t i = 0; i < count; ++i, rotations += 4) {
+    const int k = index != nullptr ? index[i] : 0;
+    if (k > 3) return BitstreamError("rotation index above 3");
+    ComposeSmallestThree(rotations, k, rotations);
+  }
+  return Status::Ok();
+}
+
 Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const GroupCoding* groups,
                     int num_groups, int sh_degree, GaussianSet* out) {
-  const GroupCoding* coded[kNumGaussianGroups];
+  const GroupCoding* coded[kNumGaussianGroups + 1];
   int num_coded = 0;
+  bool smallest_three = false;
   for (int k = 0; k < num_groups; ++k) {
+    smallest_three = smallest_three || groups[k].rotation_index;
     if (groups[k].bits > 0) coded[num_coded++] = &groups[k];
   }
 
@@ -284,7 +300,7 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
   if (pc == nullptr || pc->num_points() != count || pc->num_attributes() != num_coded) {
     return DracoError("decoded point cloud does not match the set");
   }
-  const uint8_t* values[kNumGaussianGroups];
+  const uint8_t* values[kNumGaussianGroups + 1];
   for (int j = 0; j < num_coded; ++j) {
     values[j] = AttributeValues(*pc, j, *coded[j], count);
     if (values[j] == nullptr) {
@@ -294,9 +310,14 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
 
   out->sh_degree = sh_degree;
   out->Resize(count);
+  const uint8_t* rotation_index = nullptr;
   int j = 0;
   for (int k = 0; k < num_groups; ++k) {
     const GroupCoding& g = groups[k];
+    if (g.rotation_index) {
+      if (g.bits > 0) rotation_index = values[j++];  // UINT8, one component
+      continue;
+    }
     size_t stride;
     float* dst = GroupDestination(out, g.group, &stride);
     if (g.bits == 0) {
@@ -326,7 +347,8 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
     }
     ++j;
   }
-  return Status::Ok();
+  return smallest_three ? ComposeRotations(rotation_index, count, out->rotations.data())
+                        : Status::Ok();
 }
 
 }  // namespace
@@ -348,7 +370,13 @@ int GaussianGroupComponents(int group, int sh_degree) {
   }
 }
 
-Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, GaussianSet* out) {
+int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation) {
+  if (group == kGroupRotation && rotation == RotationCoding::kSmallestThree) return 3;
+  return GaussianGroupComponents(group, sh_degree);
+}
+
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, RotationCoding rotation,
+                       uint32_t max_count, GaussianSet* out) {
   if (sh_degree < 0 || sh_degree > 3) return Status(M4D_ERR_INVALID_ARG, "bad SH degree");
   uint32_t count;
   if (!reader->ReadVarUint(&count)) return BitstreamError("gaussian_set: bad count");
@@ -363,10 +391,10 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, Ga
     return Status::Ok();
   }
 
-  GroupCoding groups[kNumGaussianGroups];
+  GroupCoding groups[kNumGaussianGroups + 1];
   int num_groups = 0;
   for (int group = 0; group < kNumGaussianGroups; ++group) {
-    const int components = GaussianGroupComponents(group, sh_degree);
+    const int components = CodedGroupComponents(group, sh_degree, rotation);
     if (components == 0) continue;
     GroupCoding& g = groups[num_groups++];
     g.group = group;
@@ -389,6 +417,14 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, Ga
     for (int r = pairs; r < components; ++r) {
       g.min[r] = g.min[0];
       g.step[r] = g.step[0];
+    }
+    if (group == kGroupRotation && rotation == RotationCoding::kSmallestThree) {
+      // Its Draco attribute follows the rotation's when the rotation group is coded.
+      GroupCoding& index = groups[num_groups++];
+      index.group = kGroupRotation;
+      index.components = 1;
+      index.bits = g.bits > 0 ? kRotationIndexBits : 0;
+      index.rotation_index = true;
     }
   }
 

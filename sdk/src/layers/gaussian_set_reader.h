@@ -8,6 +8,7 @@
 #include "common/byte_reader.h"
 #include "common/status.h"
 #include "layers/gaussian_set.h"
+#include "layers/rotation_coding.h"
 
 namespace m4d {
 
@@ -25,10 +26,16 @@ enum GaussianGroup {
 // Number of components of a group for the given SH degree (0 for sh_rest at degree 0).
 int GaussianGroupComponents(int group, int sh_degree);
 
-// Reads one gaussian_set() from `reader`. `out` must have been constructed (with the caller's
-// allocator); its sh_degree is set to `sh_degree` and it is resized to the decoded count.
-// Counts above `max_count` fail with M4D_ERR_LIMIT before any allocation.
-Status ReadGaussianSet(ByteReader* reader, int sh_degree, uint32_t max_count, GaussianSet* out);
+// Number of components a group codes with (min, step): 3 for smallest-three rotations, whose
+// index is a Draco attribute of its own (spec 5.4, 5.5).
+int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation);
+
+// Reads one gaussian_set() from `reader`, with the stream version's rotation coding. `out` must
+// have been constructed (with the caller's allocator); its sh_degree is set to `sh_degree` and
+// it is resized to the decoded count. Counts above `max_count` fail with M4D_ERR_LIMIT before
+// any allocation.
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, RotationCoding rotation,
+                       uint32_t max_count, GaussianSet* out);
 
 }  // namespace m4d
 
