@@ -88,9 +88,7 @@ void BM_ReadGaussianSet(benchmark::State& state) {
   for (auto _ : state) {
     ByteReader reader(bytes.data(), bytes.size());
     GaussianSet set;
-    if (!ReadGaussianSet(&reader, sh_degree, RotationCoding::kSmallestThree, kMaxGaussiansPerSet,
-                         &set)
-             .ok())
+    if (!ReadGaussianSet(&reader, sh_degree, GaussianSetSyntax(), kMaxGaussiansPerSet, &set).ok())
       std::abort();
     benchmark::DoNotOptimize(set.sh.data());
   }

@@ -96,6 +96,15 @@ struct ParsedSet {
 constexpr RotationCoding kFour = RotationCoding::kFourComponents;
 constexpr RotationCoding kThree = RotationCoding::kSmallestThree;
 
+// The syntax of the newest version with that rotation coding: four components are 0.4's, without
+// codebooks.
+GaussianSetSyntax SyntaxOf(RotationCoding rotation) {
+  GaussianSetSyntax syntax;
+  syntax.rotation = rotation;
+  syntax.codebooks = rotation == kThree;
+  return syntax;
+}
+
 ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree,
                 RotationCoding rotation = kThree) {
   ParsedSet p;
@@ -116,6 +125,11 @@ ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree,
       EXPECT_TRUE(r.ReadFiniteF32(&min) && r.ReadFiniteF32(&step));
       g.min.push_back(min);
       g.step.push_back(step);
+    }
+    if (rotation == kThree) {
+      uint32_t codebook_size = 1;
+      EXPECT_TRUE(r.ReadVarUint(&codebook_size));
+      EXPECT_EQ(codebook_size, 0u) << "Parse reads scalar groups only";
     }
     p.groups.push_back(g);
   }
@@ -149,14 +163,14 @@ std::vector<uint8_t> Write(const GaussianSet& set, const GaussianQuantization& q
 }
 
 GaussianQuantization FourComponents(GaussianQuantization q) {
-  q.rotation_coding = kFour;
+  q.syntax = SyntaxOf(kFour);
   return q;
 }
 
 Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out,
             uint32_t max_count = kMaxGaussiansPerSet, RotationCoding rotation = kThree) {
   ByteReader r(bytes.data(), bytes.size());
-  const Status status = ReadGaussianSet(&r, sh_degree, rotation, max_count, out);
+  const Status status = ReadGaussianSet(&r, sh_degree, SyntaxOf(rotation), max_count, out);
   if (status.ok()) {
     EXPECT_EQ(r.remaining(), 0u);
   }
@@ -260,9 +274,9 @@ void RoundTrip(const GaussianSet& set, const GaussianQuantization& q) {
   const std::vector<uint8_t> bytes = Write(set, q);
   GaussianSet decoded;
   const Status status =
-      Read(bytes, set.sh_degree, &decoded, kMaxGaussiansPerSet, q.rotation_coding);
+      Read(bytes, set.sh_degree, &decoded, kMaxGaussiansPerSet, q.syntax.rotation);
   ASSERT_TRUE(status.ok()) << status.message();
-  ExpectRoundTrip(set, bytes, decoded, q.rotation_coding);
+  ExpectRoundTrip(set, bytes, decoded, q.syntax.rotation);
 }
 
 TEST(GaussianSetCodingTest, RoundTripsEveryShDegree) {
@@ -326,7 +340,7 @@ TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
       GaussianSet set = RandomSet(1500, degree, 20 + degree);
       SetIds(&set);
       GaussianQuantization q = WithIds(GaussianQuantization());
-      q.rotation_coding = rotation;
+      q.syntax = SyntaxOf(rotation);
       q.sh_rest_bits = 3;
       for (size_t i = 0; i < 10; ++i) set.sh[i * set.sh_floats() + 3] = 0.0f;  // a group's zeros
       GaussianSet decoded, quantized = set;

@@ -131,6 +131,7 @@ struct Walk {
       if (bits == 24) Add("bits=24");
       Add(per_component ? "per_component=1" : "per_component=0");
       r->Skip(8u * (per_component ? components[g] : 1));
+      if (version_minor >= 6) Codebook(r, g, static_cast<uint32_t>(components[g]));
     }
     const uint32_t draco = r->VarUint();
     if (smallest_three) {
@@ -141,6 +142,18 @@ struct Walk {
     }
     r->Skip(draco);
     return count;
+  }
+
+  // 5.4 (0.6): a group's codebook_size and entries.
+  void Codebook(Reader* r, int group, uint32_t components) {
+    const uint32_t size = r->VarUint();
+    if (size == 0) {
+      Add("codebook_size=0");
+      return;
+    }
+    Add("codebook,group=" + std::to_string(group));
+    Add(size <= 256 ? "codebook_index=uint8" : "codebook_index=uint16");
+    SymbolBlock(r, size * components);
   }
 
   // 5.4: the indices of smallest-three rotations, Draco attribute `j` of the set's payload.

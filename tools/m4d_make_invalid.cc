@@ -114,6 +114,14 @@ void SetVaruint(Packet* p, size_t at, uint32_t value) {
   FixCrcs(p);
 }
 
+// Payload offset of the position group's codebook_size in a set packet (version 0.6): after
+// the count, bits, per_component and its (min, step) pairs.
+size_t PositionCodebookOffset(const Packet& p) {
+  const size_t count_length = VaruintLength(p, 24);
+  const bool per_component = p[24 + count_length + 1] != 0;
+  return count_length + 2 + 8 * (per_component ? 3 : 1);
+}
+
 size_t Find(const Packet& p, const char* text) {
   const size_t n = std::strlen(text);
   for (size_t i = 24; i + n <= p.size(); ++i) {
@@ -285,6 +293,19 @@ std::vector<Case> Cases() {
        "a set's count one more than its Draco point count",
        [](Stream* s, std::vector<uint8_t>*) {
          SetVaruint(&(*s)[kDynamic], 0, ReadVaruint((*s)[kDynamic], 24) + 1);
+       }},
+      {"codebook_of_positions", "M4D_ERR_BITSTREAM",
+       "a set's position group declares a codebook of 2 entries (only log scales, SH DC and "
+       "higher SH may have one)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         SetVaruint(&p, PositionCodebookOffset(p), 2);
+       }},
+      {"codebook_size_above_limit", "M4D_ERR_LIMIT",
+       "a set's codebook_size 4097 (MAX_CODEBOOK_SIZE is 4096)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         SetVaruint(&p, PositionCodebookOffset(p), 4097);
        }},
       {"draco_bad_magic", "M4D_ERR_BITSTREAM", "the Draco header's magic damaged",
        [](Stream* s, std::vector<uint8_t>*) {

@@ -31,7 +31,8 @@ struct Options {
   uint64_t seed = 1;
   std::vector<int> grid;  // resolution, channels per level (empty: the paper's)
   int mlp_layers = 1, mlp_width = 64;
-  int bits = 0;  // every Gaussian group's bits (0: the writer's defaults)
+  int bits = 0;      // every Gaussian group's bits (0: the writer's defaults)
+  int codebook = 0;  // codebook size of log scales, SH DC and higher SH (0: none; 0.6)
   // GOPs after the first are dependent (bitstream 0.3): they keep the static set and change
   // this share of it (removed, and replaced or added) with a STATIC_UPDATE (0: none).
   bool dependent_gops = false;
@@ -114,6 +115,15 @@ bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
     q.position_bits = q.log_scale_bits = q.rotation_bits = opt.bits;
     q.opacity_bits = q.sh_dc_bits = q.sh_rest_bits = opt.bits;
     wo->quantization = wo->compensation_quantization = q;
+  }
+  if (opt.codebook > 0) {
+    if (opt.bitstream_minor < 6) {
+      std::fprintf(stderr, "m4d_synth: codebooks need bitstream 0.6\n");
+      return false;
+    }
+    m4d::GaussianQuantization& q = wo->quantization;
+    q.log_scale_codebook = q.sh_dc_codebook = q.sh_rest_codebook = opt.codebook;
+    q.codebooks_only_where_they_pay = false;
   }
   return true;
 }
@@ -244,10 +254,14 @@ int main(int argc, char** argv) {
   app.add_option(
          "--bitstream-minor", opt.bitstream_minor,
          "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs; 3: one "
-         "rANS state per symbol block; 4: four-component rotations)")
+         "rANS state per symbol block; 4: four-component rotations; 5: no codebooks)")
       ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
       ->check(CLI::Range(0, 24));
+  app.add_option("--codebook", opt.codebook,
+                 "codebook size of the keyframes' log scales, SH DC and higher SH, used in every "
+                 "set of at least 32 Gaussians per entry (0: none; bitstream 0.6)")
+      ->check(CLI::Range(0, 4096));
   app.add_option("--appearance-fraction", opt.appearance_fraction,
                  "share of the dynamic Gaussians whose colour an APPEARANCE changes in each inter "
                  "frame but a GOP's first (0: none; bitstream 0.3)")

@@ -203,21 +203,29 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->expected(6)
       ->delimiter(',')
       ->check(CLI::Range(1, 24));
+  cmd->add_option("--keyframe-codebooks", a->keyframe_codebooks,
+                  "keyframe Gaussians' codebook sizes: scale,color,sh (0: scalar values; "
+                  "default: the rate point's)")
+      ->expected(3)
+      ->delimiter(',')
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
 }
 
 namespace {
 
-GaussianQuantization QuantizationFromBits(const std::vector<int>& b) {
-  GaussianQuantization q;
-  q.position_bits = b[0];
-  q.log_scale_bits = b[1];
-  q.rotation_bits = b[2];
-  q.opacity_bits = b[3];
-  q.sh_dc_bits = b[4];
-  q.sh_rest_bits = b[5];
-  return q;
+void SetBits(const std::vector<int>& b, GaussianQuantization* q) {
+  q->position_bits = b[0];
+  q->log_scale_bits = b[1];
+  q->rotation_bits = b[2];
+  q->opacity_bits = b[3];
+  q->sh_dc_bits = b[4];
+  q->sh_rest_bits = b[5];
+}
+
+std::vector<int> Codebooks(const GaussianQuantization& q) {
+  return {q.log_scale_codebook, q.sh_dc_codebook, q.sh_rest_codebook};
 }
 
 std::vector<int> QuantizationBits(const GaussianQuantization& q) {
@@ -234,10 +242,18 @@ Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* option
   ApplyRatePoint(point, options);
   if (args.lambda3 >= 0) options->compensation.sparsity_weight = args.lambda3;
   if (args.tau_g >= 0) options->compensation_thresholds.gradient = static_cast<float>(args.tau_g);
-  if (args.keyframe_bits.size() == 6)
-    options->quantization = QuantizationFromBits(args.keyframe_bits);
+  if (args.keyframe_bits.size() == 6) SetBits(args.keyframe_bits, &options->quantization);
   if (args.compensation_bits.size() == 6) {
-    options->compensation_quantization = QuantizationFromBits(args.compensation_bits);
+    SetBits(args.compensation_bits, &options->compensation_quantization);
+  }
+  if (args.keyframe_codebooks.size() == 3) {
+    const std::vector<int>& k = args.keyframe_codebooks;
+    if (k[0] == 1 || k[1] == 1 || k[2] == 1) {
+      return Status(M4D_ERR_INVALID_ARG, "--keyframe-codebooks: a size is 0 or 2..4096");
+    }
+    options->quantization.log_scale_codebook = k[0];
+    options->quantization.sh_dc_codebook = k[1];
+    options->quantization.sh_rest_codebook = k[2];
   }
   if (options->gop.fixed_length > 0) options->gop.adaptive = false;
   options->keyframe = KeyframeSchedule(args);
@@ -303,6 +319,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"independent_frames", o.independent_frames},
           {"keyframe_bits", QuantizationBits(o.quantization)},
           {"compensation_bits", QuantizationBits(o.compensation_quantization)},
+          {"keyframe_codebooks", Codebooks(o.quantization)},
           {"fps", args.fps},
           {"seed", o.seed}};
 }

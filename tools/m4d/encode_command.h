@@ -35,7 +35,8 @@ struct EncodeArguments {
   double lambda3 = -1;             // compensation's lambda_3 (< 0: the default)
   double tau_g = -1;               // compensation's replication threshold (< 0: the rate point's)
   std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
-  std::vector<int> compensation_bits;  // 6 bit depths (empty: the rate point's)
+  std::vector<int> compensation_bits;   // 6 bit depths (empty: the rate point's)
+  std::vector<int> keyframe_codebooks;  // scale, color, sh codebook sizes (empty: the point's)
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)

@@ -6,7 +6,7 @@
 #include "common/byte_writer.h"
 #include "common/status.h"
 #include "layers/gaussian_set.h"
-#include "layers/rotation_coding.h"
+#include "layers/gaussian_set_syntax.h"
 
 namespace m4d {
 
@@ -21,9 +21,23 @@ struct GaussianQuantization {
   int sh_rest_bits = 5;
   // Draco encoder speed 0 (best) .. 10 (fastest); always the sequential method (spec 5.5).
   int draco_speed = 5;
-  // The stream version's (SequenceHeader::rotation_coding): smallest-three from 0.5 on.
-  RotationCoding rotation_coding = RotationCoding::kSmallestThree;
+  // Codebook sizes (0: scalar values; spec 5.4, version 0.6). A group with a size K > 0 is
+  // coded as K entries fitted by k-means, with codebook_bits per component, and one index per
+  // Gaussian, when the set has at least kCodebookMinGaussiansPerEntry * K Gaussians (smaller
+  // sets, such as compensation, keep their scalar bits).
+  int log_scale_codebook = 0;
+  int sh_dc_codebook = 0;
+  int sh_rest_codebook = 0;
+  int codebook_bits = 10;
+  // Keep a codebook only where it lowers error plus bytes against the scalar bits (false: always,
+  // for streams that must exercise codebooks).
+  bool codebooks_only_where_they_pay = true;
+  // The stream version's (SequenceHeader::gaussian_set_syntax): the newest by default.
+  GaussianSetSyntax syntax;
 };
+
+// Fewer Gaussians per entry and the entries cost more than the indices save.
+constexpr int kCodebookMinGaussiansPerEntry = 32;
 
 // Writes gaussian_set() for `set` (its sh_degree must be the sequence's).
 Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
@@ -36,7 +50,8 @@ Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization
 
 // Replaces every value of `set` by the one a decoder reconstructs from WriteGaussianSet's
 // output (same ranges and rounding; the set keeps its order), without coding it: the
-// forward pass of quantization-aware training.
+// forward pass of quantization-aware training. Codebook groups are quantized with their scalar
+// bits instead: a k-means per training step would cost more than the step.
 Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set);
 
 }  // namespace m4d

@@ -24,11 +24,11 @@ DecoderOptions ClosedLoopOptions() {
 StreamWriter::StreamWriter(const StreamWriterOptions& options)
     : options_(options), decoder_(ClosedLoopOptions()) {}
 
-// Sets are coded with the rotation coding of the sequence's version, whatever the options say:
-// the encoder's reconstructions come from decoding what is written.
+// Sets are coded with the gaussian_set() syntax of the sequence's version, whatever the options
+// say: the encoder's reconstructions come from decoding what is written.
 GaussianQuantization StreamWriter::ForStream(const GaussianQuantization& quantization) const {
   GaussianQuantization coded = quantization;
-  coded.rotation_coding = options_.sequence.rotation_coding();
+  coded.syntax = options_.sequence.gaussian_set_syntax();
   return coded;
 }
 

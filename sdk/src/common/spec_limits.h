@@ -16,6 +16,10 @@ constexpr uint32_t kMaxGridValues = 1u << 24;
 constexpr int kMaxMlpHiddenLayers = 4;
 constexpr int kMaxMlpWidth = 256;
 constexpr uint32_t kMaxAlphabet = 4096;
+// From version 0.6, a group's codebook (spec 5.4): at most this many entries, each component
+// coded with at most kMaxCodebookBits bits.
+constexpr uint32_t kMaxCodebookSize = 4096;
+constexpr int kMaxCodebookBits = 12;
 constexpr int kBrickSize = 8;
 constexpr int kRansPrecision = 15;
 constexpr uint32_t kRansTotal = 1u << kRansPrecision;

@@ -265,7 +265,7 @@ Status Decoder::DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_s
   auto set = std::make_shared<GaussianSet>(options_.allocator);
   ByteReader reader(payload, size);
   const char* what = is_static ? "KEYFRAME_STATIC" : "KEYFRAME_DYNAMIC";
-  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, sequence_.rotation_coding(),
+  Status status = ReadGaussianSet(&reader, sequence_.sh_degree, sequence_.gaussian_set_syntax(),
                                   MaxGaussians(), set.get());
   if (!status.ok()) return Status(status.code(), std::string(what) + ": " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, what));
@@ -332,7 +332,7 @@ Status Decoder::ReadSetChange(const uint8_t* payload, size_t size, const char* w
   }
   const uint32_t max = MaxGaussians();
   Status status =
-      ReadGaussianSet(&reader, sequence_.sh_degree, sequence_.rotation_coding(), max, added);
+      ReadGaussianSet(&reader, sequence_.sh_degree, sequence_.gaussian_set_syntax(), max, added);
   if (!status.ok()) return Status(status.code(), prefix + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, what));
   if (static_cast<uint64_t>(n - *num_removed) + added->size() > max) {

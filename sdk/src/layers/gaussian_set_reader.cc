@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/spec_limits.h"
+#include "entropy/symbol_block_reader.h"
 
 namespace m4d {
 namespace {
@@ -35,8 +36,9 @@ constexpr uint32_t kDracoMaxRawSymbols = 1u << 18;
 constexpr uint32_t kDracoMaxTagSymbols = 32;
 constexpr uint8_t kDracoMaxRawBitLength = 18;
 
-// One attribute group's quantization (spec 5.4), (min, step) expanded to every component; or
-// the index attribute of smallest-three rotations, which has no (min, step).
+// One attribute group's quantization (spec 5.4), (min, step) expanded to every component, and
+// its codebook if it has one; or the index attribute of smallest-three rotations, which has no
+// (min, step).
 struct GroupCoding {
   int group = 0;
   int components = 0;
@@ -44,10 +46,25 @@ struct GroupCoding {
   bool rotation_index = false;
   float min[kMaxGroupComponents];
   float step[kMaxGroupComponents];
+  uint32_t codebook_size = 0;   // 0: scalar values
+  std::vector<float> codebook;  // dequantized entries, [entry][component]
 };
 
 draco::DataType DracoDataType(int bits) {
   return bits <= 8 ? draco::DT_UINT8 : bits <= 16 ? draco::DT_UINT16 : draco::DT_UINT32;
+}
+
+// The Draco attribute of a group (spec 5.5): its quantized components, or one codebook index.
+int AttributeComponents(const GroupCoding& g) { return g.codebook_size > 0 ? 1 : g.components; }
+
+draco::DataType AttributeDataType(const GroupCoding& g) {
+  if (g.codebook_size > 0) return g.codebook_size <= 256 ? draco::DT_UINT8 : draco::DT_UINT16;
+  return DracoDataType(g.bits);
+}
+
+// Every value of the attribute is below this.
+uint32_t AttributeLimit(const GroupCoding& g) {
+  return g.codebook_size > 0 ? g.codebook_size : 1u << g.bits;
 }
 
 draco::GeometryAttribute::Type DracoAttributeType(int group) {
@@ -158,8 +175,8 @@ Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
     const uint8_t* d;
     if (!r.ReadBytes(5, &d)) return DracoTruncated();
     const GroupCoding& g = *coded[j];
-    if (d[0] != DracoAttributeType(g.group) || d[1] != DracoDataType(g.bits) ||
-        d[2] != g.components || d[3] != 0 || d[4] != j) {
+    if (d[0] != DracoAttributeType(g.group) || d[1] != AttributeDataType(g) ||
+        d[2] != AttributeComponents(g) || d[3] != 0 || d[4] != j) {
       return DracoError("attribute " + std::to_string(j) + " does not match group " +
                         std::to_string(g.group));
     }
@@ -190,12 +207,13 @@ Status CheckDracoStream(const uint8_t* payload, size_t size, uint32_t count,
     }
     if (!r.ReadU8(&compressed)) return DracoTruncated();
     if (compressed != 1) return DracoError("uncompressed attribute");
+    const int components = AttributeComponents(g);
     M4D_RETURN_IF_ERROR(SkipDracoSymbols(
-        payload, size, &r, count * static_cast<uint32_t>(g.components), g.components, &scratch));
+        payload, size, &r, count * static_cast<uint32_t>(components), components, &scratch));
     if (delta) {
       uint32_t lo, hi;
       if (!r.ReadU32(&lo) || !r.ReadU32(&hi)) return DracoTruncated();
-      if (lo > hi || hi >= (1u << g.bits)) return DracoError("bad wrap bounds");
+      if (lo > hi || hi >= AttributeLimit(g)) return DracoError("bad wrap bounds");
     }
   }
   return r.remaining() == 0 ? Status::Ok() : DracoError("trailing bytes");
@@ -213,6 +231,20 @@ bool Dequantize(const uint8_t* src, uint32_t count, const GroupCoding& g, float*
       if (static_cast<uint32_t>(q) >= limit) return false;
       dst[r] = g.min[r] + static_cast<float>(q) * g.step[r];
     }
+  }
+  return true;
+}
+
+// A codebook group: each Gaussian's index selects an entry, dequantized once (spec 5.4).
+template <typename T>
+bool LookUp(const uint8_t* src, uint32_t count, const GroupCoding& g, float* dst,
+            size_t dst_stride) {
+  const size_t bytes = sizeof(float) * static_cast<size_t>(g.components);
+  for (uint32_t i = 0; i < count; ++i, src += sizeof(T), dst += dst_stride) {
+    T k;
+    std::memcpy(&k, src, sizeof(T));
+    if (static_cast<uint32_t>(k) >= g.codebook_size) return false;
+    std::memcpy(dst, &g.codebook[static_cast<size_t>(k) * g.components], bytes);
   }
   return true;
 }
@@ -247,12 +279,12 @@ const uint8_t* AttributeValues(const draco::PointCloud& pc, int j, const GroupCo
                                uint32_t count) {
   const draco::PointAttribute* att = pc.attribute(j);
   if (att == nullptr || att->attribute_type() != DracoAttributeType(g.group) ||
-      att->data_type() != DracoDataType(g.bits) || att->num_components() != g.components ||
+      att->data_type() != AttributeDataType(g) || att->num_components() != AttributeComponents(g) ||
       !att->is_mapping_identity() || att->size() != count || att->byte_offset() != 0) {
     return nullptr;
   }
   const size_t stride = static_cast<size_t>(draco::DataTypeLength(att->data_type())) *
-                        static_cast<size_t>(g.components);
+                        static_cast<size_t>(AttributeComponents(g));
   if (static_cast<size_t>(att->byte_stride()) != stride ||
       att->buffer()->data_size() < stride * count) {
     return nullptr;
@@ -330,20 +362,24 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
       continue;
     }
     bool ok;
-    switch (DracoDataType(g.bits)) {
+    switch (AttributeDataType(g)) {
       case draco::DT_UINT8:
-        ok = Dequantize<uint8_t>(values[j], count, g, dst, stride);
+        ok = g.codebook_size > 0 ? LookUp<uint8_t>(values[j], count, g, dst, stride)
+                                 : Dequantize<uint8_t>(values[j], count, g, dst, stride);
         break;
       case draco::DT_UINT16:
-        ok = Dequantize<uint16_t>(values[j], count, g, dst, stride);
+        ok = g.codebook_size > 0 ? LookUp<uint16_t>(values[j], count, g, dst, stride)
+                                 : Dequantize<uint16_t>(values[j], count, g, dst, stride);
         break;
       default:
         ok = Dequantize<uint32_t>(values[j], count, g, dst, stride);
         break;
     }
     if (!ok) {
-      return BitstreamError("group " + std::to_string(g.group) + ": value not below 2^" +
-                            std::to_string(g.bits));
+      return BitstreamError("group " + std::to_string(g.group) + ": value not below " +
+                            (g.codebook_size > 0
+                                 ? "the codebook size " + std::to_string(g.codebook_size)
+                                 : "2^" + std::to_string(g.bits)));
     }
     ++j;
   }
@@ -351,7 +387,40 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
                         : Status::Ok();
 }
 
+// codebook_size and, when not 0, the entries of group `g` (version 0.6, spec 5.4), dequantized
+// once with the group's (min, step).
+Status ReadCodebook(ByteReader* reader, RansLayout layout, const std::string& where,
+                    GroupCoding* g) {
+  uint32_t size;
+  if (!reader->ReadVarUint(&size)) return BitstreamError(where + "truncated codebook_size");
+  if (size == 0) return Status::Ok();
+  if (size > kMaxCodebookSize) {
+    return LimitError(where + "codebook of " + std::to_string(size) + " entries exceeds " +
+                      std::to_string(kMaxCodebookSize));
+  }
+  if (size < 2 || !GroupAllowsCodebook(g->group) || g->bits < 1 || g->bits > kMaxCodebookBits) {
+    return BitstreamError(where +
+                          "codebook of size 1, of a group without codebooks, or with bits "
+                          "outside 1..12");
+  }
+  const size_t c = static_cast<size_t>(g->components);
+  const uint32_t num_values = size * static_cast<uint32_t>(c);
+  std::vector<int32_t> q(num_values);
+  M4D_RETURN_IF_ERROR(ReadSymbolBlock(reader, layout, num_values, 0, (1 << g->bits) - 1, q.data()));
+  g->codebook_size = size;
+  g->codebook.resize(num_values);
+  for (size_t k = 0; k < num_values; ++k) {
+    const size_t r = k % c;
+    g->codebook[k] = g->min[r] + static_cast<float>(q[k]) * g->step[r];
+  }
+  return Status::Ok();
+}
+
 }  // namespace
+
+bool GroupAllowsCodebook(int group) {
+  return group == kGroupLogScale || group == kGroupShDc || group == kGroupShRest;
+}
 
 int GaussianGroupComponents(int group, int sh_degree) {
   switch (group) {
@@ -375,8 +444,9 @@ int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation) {
   return GaussianGroupComponents(group, sh_degree);
 }
 
-Status ReadGaussianSet(ByteReader* reader, int sh_degree, RotationCoding rotation,
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSyntax& syntax,
                        uint32_t max_count, GaussianSet* out) {
+  const RotationCoding rotation = syntax.rotation;
   if (sh_degree < 0 || sh_degree > 3) return Status(M4D_ERR_INVALID_ARG, "bad SH degree");
   uint32_t count;
   if (!reader->ReadVarUint(&count)) return BitstreamError("gaussian_set: bad count");
@@ -418,6 +488,7 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, RotationCoding rotatio
       g.min[r] = g.min[0];
       g.step[r] = g.step[0];
     }
+    if (syntax.codebooks) M4D_RETURN_IF_ERROR(ReadCodebook(reader, syntax.rans_layout, where, &g));
     if (group == kGroupRotation && rotation == RotationCoding::kSmallestThree) {
       // Its Draco attribute follows the rotation's when the rotation group is coded.
       GroupCoding& index = groups[num_groups++];

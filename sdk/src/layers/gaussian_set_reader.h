@@ -8,7 +8,7 @@
 #include "common/byte_reader.h"
 #include "common/status.h"
 #include "layers/gaussian_set.h"
-#include "layers/rotation_coding.h"
+#include "layers/gaussian_set_syntax.h"
 
 namespace m4d {
 
@@ -30,11 +30,15 @@ int GaussianGroupComponents(int group, int sh_degree);
 // index is a Draco attribute of its own (spec 5.4, 5.5).
 int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation);
 
-// Reads one gaussian_set() from `reader`, with the stream version's rotation coding. `out` must
+// Whether a group may be coded with a codebook (version 0.6, spec 5.4): log scales, SH DC and
+// higher SH.
+bool GroupAllowsCodebook(int group);
+
+// Reads one gaussian_set() from `reader`, with the stream version's syntax. `out` must
 // have been constructed (with the caller's allocator); its sh_degree is set to `sh_degree` and
 // it is resized to the decoded count. Counts above `max_count` fail with M4D_ERR_LIMIT before
 // any allocation.
-Status ReadGaussianSet(ByteReader* reader, int sh_degree, RotationCoding rotation,
+Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSyntax& syntax,
                        uint32_t max_count, GaussianSet* out);
 
 }  // namespace m4d

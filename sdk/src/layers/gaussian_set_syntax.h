@@ -1,0 +1,20 @@
+// What gaussian_set() holds in a given bitstream version (bitstream-spec 5.4, 10): the readers
+// and writers of every version share one implementation, told the version's syntax.
+#ifndef M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
+#define M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
+
+#include "entropy/symbol_block_reader.h"
+#include "layers/rotation_coding.h"
+
+namespace m4d {
+
+// Defaults are the newest version's.
+struct GaussianSetSyntax {
+  RotationCoding rotation = RotationCoding::kSmallestThree;  // smallest-three from 0.5 on
+  bool codebooks = true;                                     // codebook_size fields from 0.6 on
+  RansLayout rans_layout = RansLayout::kInterleaved;         // of the codebook entries
+};
+
+}  // namespace m4d
+
+#endif  // M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
