@@ -14,11 +14,14 @@
 #include "common/byte_writer.h"
 #include "common/spec_limits.h"
 #include "entropy/symbol_block_reader.h"
+#include "gaussian_set_test_util.h"
 #include "layers/gaussian_set_reader.h"
 #include "layers/gaussian_set_writer.h"
 
 namespace m4d {
 namespace {
+
+using testing::WriteSet;
 
 // Colours and scales drawn around `clusters` centres with a little noise, as a trained
 // keyframe's cluster; positions and rotations uniform.
@@ -49,14 +52,6 @@ GaussianQuantization Codebooks(int size) {
   GaussianQuantization q;
   q.log_scale_codebook = q.sh_dc_codebook = q.sh_rest_codebook = size;
   return q;
-}
-
-std::vector<uint8_t> Write(const GaussianSet& set, const GaussianQuantization& q) {
-  std::vector<uint8_t> bytes;
-  ByteWriter w(&bytes);
-  const Status status = WriteGaussianSet(set, q, &w);
-  EXPECT_TRUE(status.ok()) << status.message();
-  return bytes;
 }
 
 Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out,
@@ -121,7 +116,7 @@ TEST(GaussianSetCodebookTest, EveryValueIsOneOfTheEntries) {
     const GaussianSet set = ClusteredSet(n, 2, 40, 3);
     GaussianQuantization q = Codebooks(size);
     q.codebooks_only_where_they_pay = false;
-    const std::vector<uint8_t> bytes = Write(set, q);
+    const std::vector<uint8_t> bytes = WriteSet(set, q);
     const Header header = ParseHeader(bytes, 2);
     EXPECT_EQ(header.codebook_sizes,
               (std::vector<uint32_t>{0, static_cast<uint32_t>(size), 0, 0,
@@ -148,7 +143,7 @@ TEST(GaussianSetCodebookTest, EntriesFitTheClusters) {
   GaussianQuantization q = Codebooks(64);
   q.codebooks_only_where_they_pay = false;
   GaussianSet decoded;
-  ASSERT_TRUE(Read(Write(set, q), 1, &decoded).ok());
+  ASSERT_TRUE(Read(WriteSet(set, q), 1, &decoded).ok());
   // The decoded order is the coding order: match Gaussians by their positions.
   double squared = 0.0;
   for (size_t j = 0; j < decoded.size(); ++j) {
@@ -160,7 +155,10 @@ TEST(GaussianSetCodebookTest, EntriesFitTheClusters) {
         const float e = set.positions[3 * i + r] - decoded.positions[3 * j + r];
         d += e * e;
       }
-      if (d < best_d) best_d = d, best = i;
+      if (d < best_d) {
+        best_d = d;
+        best = i;
+      }
     }
     for (int r = 0; r < 12; ++r) {
       const double e = double(decoded.sh[12 * j + r]) - set.sh[12 * best + r];
@@ -177,17 +175,17 @@ TEST(GaussianSetCodebookTest, KeptOnlyWhereItPays) {
   q.sh_dc_bits = 5;  // rate point r1's
   q.sh_rest_bits = 3;
   const GaussianSet clustered = ClusteredSet(8192, 1, 30, 7);
-  const Header kept = ParseHeader(Write(clustered, q), 1);
+  const Header kept = ParseHeader(WriteSet(clustered, q), 1);
   EXPECT_EQ(kept.codebook_sizes[kGroupShDc], 64u);
   EXPECT_EQ(kept.codebook_sizes[kGroupShRest], 64u);
   GaussianQuantization scalar = q;
   scalar.sh_dc_codebook = scalar.sh_rest_codebook = 0;
-  EXPECT_LT(Write(clustered, q).size(), Write(clustered, scalar).size());
+  EXPECT_LT(WriteSet(clustered, q).size(), WriteSet(clustered, scalar).size());
   // Colours uniform in their range: 64 entries err far more than the scalars for the bytes.
   GaussianSet uniform = clustered;
   std::mt19937 rng(9);
   for (float& v : uniform.sh) v = std::uniform_real_distribution<float>(-1, 1)(rng);
-  const Header dropped = ParseHeader(Write(uniform, q), 1);
+  const Header dropped = ParseHeader(WriteSet(uniform, q), 1);
   EXPECT_EQ(dropped.codebook_sizes[kGroupShDc], 0u);
   EXPECT_EQ(dropped.codebook_sizes[kGroupShRest], 0u);
 }
@@ -197,11 +195,11 @@ TEST(GaussianSetCodebookTest, SmallSetsAndOlderVersionsKeepScalars) {
   q.codebooks_only_where_they_pay = false;
   const size_t too_few = static_cast<size_t>(kCodebookMinGaussiansPerEntry) * 64 - 1;
   const GaussianSet small = ClusteredSet(too_few, 1, 10, 11);
-  for (uint32_t size : ParseHeader(Write(small, q), 1).codebook_sizes) EXPECT_EQ(size, 0u);
+  for (uint32_t size : ParseHeader(WriteSet(small, q), 1).codebook_sizes) EXPECT_EQ(size, 0u);
   // A 0.5 set has no codebook_size fields at all, whatever the request.
   q.syntax.codebooks = false;
   const GaussianSet set = ClusteredSet(4096, 1, 10, 12);
-  const std::vector<uint8_t> bytes = Write(set, q);
+  const std::vector<uint8_t> bytes = WriteSet(set, q);
   GaussianSet decoded;
   GaussianSetSyntax v05;
   v05.codebooks = false;
@@ -226,7 +224,7 @@ std::vector<uint8_t> WithCodebookSize(const std::vector<uint8_t>& bytes, const H
 
 TEST(GaussianSetCodebookTest, RejectsCodebooksTheSpecDoesNotAllow) {
   const GaussianSet set = ClusteredSet(1024, 1, 10, 13);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const Header h = ParseHeader(bytes, 1);
   GaussianSet decoded;
   ASSERT_TRUE(Read(bytes, 1, &decoded).ok());
@@ -245,7 +243,7 @@ TEST(GaussianSetCodebookTest, RejectsEntriesAboveTheBitsAndIndicesAboveTheSize) 
   GaussianQuantization q = Codebooks(16);
   q.codebooks_only_where_they_pay = false;
   q.codebook_bits = 4;
-  const std::vector<uint8_t> bytes = Write(set, q);
+  const std::vector<uint8_t> bytes = WriteSet(set, q);
   const Header h = ParseHeader(bytes, 0);
   ASSERT_EQ(h.codebook_sizes[kGroupShDc], 16u);
   GaussianSet decoded;

@@ -19,6 +19,7 @@
 #include "common/byte_reader.h"
 #include "common/byte_writer.h"
 #include "common/spec_limits.h"
+#include "gaussian_set_test_util.h"
 #include "layers/gaussian_set_reader.h"
 #include "layers/gaussian_set_writer.h"
 #include "layers/rotation_coding.h"
@@ -26,6 +27,8 @@
 
 namespace m4d {
 namespace {
+
+using testing::WriteSet;
 
 GaussianSet RandomSet(size_t n, int sh_degree, uint32_t seed) {
   std::mt19937 rng(seed);
@@ -154,14 +157,6 @@ std::vector<uint8_t> Reassemble(const std::vector<uint8_t>& bytes, const ParsedS
   return out;
 }
 
-std::vector<uint8_t> Write(const GaussianSet& set, const GaussianQuantization& q) {
-  std::vector<uint8_t> bytes;
-  ByteWriter w(&bytes);
-  const Status status = WriteGaussianSet(set, q, &w);
-  EXPECT_TRUE(status.ok()) << status.message();
-  return bytes;
-}
-
 GaussianQuantization FourComponents(GaussianQuantization q) {
   q.syntax = SyntaxOf(kFour);
   return q;
@@ -271,7 +266,7 @@ void ExpectRoundTrip(const GaussianSet& original, const std::vector<uint8_t>& by
 }
 
 void RoundTrip(const GaussianSet& set, const GaussianQuantization& q) {
-  const std::vector<uint8_t> bytes = Write(set, q);
+  const std::vector<uint8_t> bytes = WriteSet(set, q);
   GaussianSet decoded;
   const Status status =
       Read(bytes, set.sh_degree, &decoded, kMaxGaussiansPerSet, q.syntax.rotation);
@@ -306,7 +301,7 @@ TEST(GaussianSetCodingTest, DefaultQuantizationRoundTrips) {
   // Without ids: compare each component's values as a multiset.
   // Four-component rotations, whose values are each quantized on their own.
   const GaussianSet set = RandomSet(2000, 3, 3);
-  const std::vector<uint8_t> bytes = Write(set, FourComponents(GaussianQuantization()));
+  const std::vector<uint8_t> bytes = WriteSet(set, FourComponents(GaussianQuantization()));
   GaussianSet decoded;
   ASSERT_TRUE(Read(bytes, 3, &decoded, kMaxGaussiansPerSet, kFour).ok());
   const ParsedSet p = Parse(bytes, 3, kFour);
@@ -372,7 +367,7 @@ TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
 TEST(GaussianSetCodingTest, EmptySetIsOneByte) {
   GaussianSet set;
   set.sh_degree = 2;
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(bytes, std::vector<uint8_t>{0});
   GaussianSet decoded = RandomSet(5, 1, 1);
   ASSERT_TRUE(Read(bytes, 2, &decoded).ok());
@@ -398,7 +393,7 @@ TEST(GaussianSetCodingTest, ConstantGroupsCostNothing) {
     for (int r = 0; r < 24; ++r) Component(set, kGroupShRest, i, r) = -0.0f;
     set.log_scales[3 * i + 1] = -3;  // one constant component of a varying group
   }
-  const std::vector<uint8_t> bytes = Write(set, WithIds(GaussianQuantization()));
+  const std::vector<uint8_t> bytes = WriteSet(set, WithIds(GaussianQuantization()));
   const ParsedSet p = Parse(bytes, 2);
   EXPECT_EQ(p.groups[kGroupRotation].bits, 0);
   EXPECT_EQ(p.groups[kGroupShRest].bits, 0);
@@ -420,7 +415,7 @@ TEST(GaussianSetCodingTest, AllGroupsConstant) {
       }
     }
   }
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   GaussianSet decoded;
   const Status status = Read(bytes, 1, &decoded);
   ASSERT_TRUE(status.ok()) << status.message();
@@ -436,7 +431,7 @@ TEST(GaussianSetCodingTest, LargeSetRoundTrips) {
 
 TEST(GaussianSetCodingTest, WritingIsDeterministic) {
   const GaussianSet set = RandomSet(1000, 1, 4);
-  EXPECT_EQ(Write(set, GaussianQuantization()), Write(set, GaussianQuantization()));
+  EXPECT_EQ(WriteSet(set, GaussianQuantization()), WriteSet(set, GaussianQuantization()));
 }
 
 TEST(GaussianSetCodingTest, WriterRejectsBadInput) {
@@ -481,7 +476,7 @@ TEST(GaussianSetCodingTest, RejectsKdTreePayloads) {
   // Spec 5.5 allows Draco's sequential method only; a valid kd-tree stream of the same
   // points is refused before Draco decodes it.
   GaussianSet set = RandomSet(2000, 1, 21);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -495,7 +490,7 @@ TEST(GaussianSetCodingTest, RejectsKdTreePayloads) {
 
 TEST(GaussianSetCodingTest, RejectsEveryTruncation) {
   GaussianSet set = RandomSet(40, 1, 8);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   for (size_t size = 0; size < bytes.size(); ++size) {
     const std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + size);
     GaussianSet decoded;
@@ -530,7 +525,7 @@ TEST(GaussianSetCodingTest, RejectsEveryTruncation) {
 
 TEST(GaussianSetCodingTest, RejectsBadQuantizationParameters) {
   GaussianSet set = RandomSet(30, 1, 9);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   auto expect_error = [&](size_t offset, const void* patch, size_t size) {
     std::vector<uint8_t> bad = bytes;
@@ -553,7 +548,7 @@ TEST(GaussianSetCodingTest, RejectsBadQuantizationParameters) {
 
 TEST(GaussianSetCodingTest, RejectsCountsAboveTheLimitBeforeAllocating) {
   const GaussianSet set = RandomSet(50, 0, 10);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   GaussianSet decoded;
   EXPECT_EQ(Read(bytes, 0, &decoded, 49).code(), M4D_ERR_LIMIT);
   EXPECT_TRUE(Read(bytes, 0, &decoded, 50).ok());
@@ -570,7 +565,7 @@ TEST(GaussianSetCodingTest, RejectsCountsAboveTheLimitBeforeAllocating) {
 
 TEST(GaussianSetCodingTest, RejectsBadDracoSize) {
   const GaussianSet set = RandomSet(20, 0, 12);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 0);
   GaussianSet decoded;
   EXPECT_EQ(Read(Reassemble(bytes, p, p.count, {}), 0, &decoded).code(), M4D_ERR_BITSTREAM);
@@ -587,7 +582,7 @@ TEST(GaussianSetCodingTest, RejectsBadDracoSize) {
 
 TEST(GaussianSetCodingTest, RejectsMismatchingPointCounts) {
   const GaussianSet set = RandomSet(64, 1, 13);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -650,7 +645,7 @@ std::vector<uint8_t> EditedPayload(const ParsedSet& p, int method, int predictio
 
 TEST(GaussianSetCodingTest, RejectsAttributesNotMatchingTheGroups) {
   GaussianSet set = RandomSet(80, 1, 14);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   {
     const int method = draco::POINT_CLOUD_SEQUENTIAL_ENCODING;
@@ -690,7 +685,7 @@ TEST(GaussianSetCodingTest, RejectsValuesNotBelowTwoToTheBits) {
   GaussianSet set = RandomSet(80, 0, 15);
   GaussianQuantization q;
   q.opacity_bits = 7;  // an 8-bit Draco type holding 7-bit values
-  const std::vector<uint8_t> bytes = Write(set, q);
+  const std::vector<uint8_t> bytes = WriteSet(set, q);
   const ParsedSet p = Parse(bytes, 0);
   std::unique_ptr<draco::PointCloud> pc = DracoDecode(p.draco);
   uint8_t big = 200;
@@ -708,7 +703,7 @@ TEST(GaussianSetCodingTest, RejectsValuesNotBelowTwoToTheBits) {
 
 TEST(GaussianSetCodingTest, RejectsGarbageDracoPayloads) {
   const GaussianSet set = RandomSet(100, 1, 16);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -734,7 +729,7 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
   for (int position_bits : {24, 0}) {  // first attribute: 24-bit positions, or log scales
     GaussianQuantization q;
     q.position_bits = position_bits;
-    const std::vector<uint8_t> bytes = Write(set, q);
+    const std::vector<uint8_t> bytes = WriteSet(set, q);
     const ParsedSet p = Parse(bytes, 0);
     // The rotation's index is an attribute of its own, without a group header.
     const size_t coded = p.groups.size() + 1 - (position_bits == 0 ? 1 : 0);
@@ -760,7 +755,7 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
 
 TEST(GaussianSetCodingTest, SurvivesFlippedBytesInTheDracoPayload) {
   GaussianSet set = RandomSet(60, 1, 18);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -789,8 +784,8 @@ TEST(GaussianSetCodingTest, SmallestThreeKeepsTheRotationInFewerBytes) {
   GaussianSet set = RandomSet(5000, 1, 41);
   SetIds(&set);
   GaussianQuantization q = WithIds(GaussianQuantization());
-  const std::vector<uint8_t> three = Write(set, q);
-  const std::vector<uint8_t> four = Write(set, FourComponents(q));
+  const std::vector<uint8_t> three = WriteSet(set, q);
+  const std::vector<uint8_t> four = WriteSet(set, FourComponents(q));
   EXPECT_LT(three.size() + 5000 / 8, four.size());  // at least a bit per Gaussian
   GaussianSet decoded;
   ASSERT_TRUE(Read(three, 1, &decoded).ok());
@@ -817,7 +812,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
     const float turned[4] = {0, -2, 0, 0};
     std::memcpy(&set.rotations[4 * i], turned, sizeof(turned));
   }
-  std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   GaussianSet decoded;
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
@@ -828,7 +823,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
     const float identity[4] = {1, 0, 0, 0};
     std::memcpy(&set.rotations[4 * i], identity, sizeof(identity));
   }
-  bytes = Write(set, WithIds(GaussianQuantization()));
+  bytes = WriteSet(set, WithIds(GaussianQuantization()));
   EXPECT_GT(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
   for (size_t j = 0; j < set.size(); ++j) {
@@ -837,7 +832,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
                     i % 2 == 0 ? std::vector<float>{1, 0, 0, 0} : std::vector<float>{0, 1, 0, 0});
   }
   std::fill(set.rotations.begin(), set.rotations.end(), 0.0f);  // no rotation: the identity
-  bytes = Write(set, GaussianQuantization());
+  bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
   expect_rotation(decoded, 0, {1, 0, 0, 0});
@@ -866,7 +861,7 @@ TEST(GaussianSetCodingTest, ComposeSmallestThreeRoundsEachOperation) {
 
 TEST(GaussianSetCodingTest, RejectsARotationIndexAboveThree) {
   GaussianSet set = RandomSet(100, 0, 43);
-  const std::vector<uint8_t> bytes = Write(set, GaussianQuantization());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 0);
   std::unique_ptr<draco::PointCloud> pc = DracoDecode(p.draco);
   ASSERT_EQ(pc->num_attributes(), 6);  // position, scale, rotation, its index, opacity, DC
