@@ -112,6 +112,11 @@ TEST(RetrainingGrowthTest, SeedsWhatAppearedWhereItIs) {
     near += std::hypot(p[0], p[1] - kNewcomerY, p[2]) < 1.0f ? 1 : 0;
   }
   EXPECT_GT(near, growth.seeded / 2);
+  // Seeds start nearly transparent, so that they do not veil the prediction.
+  for (size_t i = background.size(); i < model.size(); ++i) {
+    const float opacity = 1.0f / (1.0f + std::exp(-model.opacity_logits[i]));
+    EXPECT_NEAR(opacity, options.seed_opacity, 1e-4f);
+  }
   options.gaussians_per_pixel = -1.0f;
   EXPECT_EQ(GrowForUnexplained(views, options, &model, &growth).code(), M4D_ERR_INVALID_ARG);
 }

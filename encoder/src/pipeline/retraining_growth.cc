@@ -64,6 +64,7 @@ Status GrowForUnexplained(const TrainingViews& views, const RetrainingGrowthOpti
   if (points.size() == 0) return Status::Ok();
   PointInitialisationOptions init;
   init.sh_degree = model->sh_degree;
+  init.opacity = options.seed_opacity;
   init.threads = options.render.threads;
   GaussianModel seeds;
   M4D_RETURN_IF_ERROR(InitialiseFromPoints(points, init, &seeds));
