@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/byte_writer.h"
 #include "dataset/capture.h"
 #include "layers/gaussian_set_writer.h"
 #include "metrics/photometric_loss.h"
@@ -278,6 +279,37 @@ TEST(KeyframeTrainerTest, FrozenGaussiansStayExactlyAsGiven) {
   }
   options.frozen_gaussians = start.size() + 1;
   EXPECT_EQ(trainer.Init(options, train, start).code(), M4D_ERR_INVALID_ARG);
+}
+
+// The keyframe rate term (keyframe_rate_term.h) during quantization-aware iterations: the
+// trained model codes into fewer bytes than without it, from the same start and seed.
+TEST(KeyframeTrainerTest, RateTermShrinksTheCodedKeyframe) {
+  const Scene scene = MakeScene();
+  const Capture& capture = scene.capture;
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &train).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(
+      InitialiseFromPoints(capture.initial_points, PointInitialisationOptions(), &initial).ok());
+  KeyframeTrainingOptions options = TestOptions();
+  options.quantization_aware_iterations = 200;
+  size_t bytes[2] = {};
+  for (int with_rate : {0, 1}) {
+    options.rate_weight = with_rate ? 10.0 : 0.0;
+    KeyframeTrainer trainer;
+    ASSERT_TRUE(trainer.Init(options, train, initial).ok());
+    ASSERT_TRUE(trainer.Train().ok());
+    GaussianSet set;
+    ASSERT_TRUE(ModelToGaussianSet(trainer.model(), trainer.model().sh_degree, &set).ok());
+    std::vector<uint8_t> payload;
+    ByteWriter writer(&payload);
+    ASSERT_TRUE(WriteGaussianSet(set, options.quantization, &writer).ok());
+    bytes[with_rate] = payload.size();
+  }
+  EXPECT_LT(bytes[1], bytes[0] * 9 / 10);
+  options.rate_weight = -1.0;
+  KeyframeTrainer trainer;
+  EXPECT_EQ(trainer.Init(options, train, initial).code(), M4D_ERR_INVALID_ARG);
 }
 
 // A cap per training pixel: 7 views of 64x48 at 0.01 per pixel allow 215 Gaussians, fewer

@@ -209,6 +209,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->expected(3)
       ->delimiter(',')
       ->check(CLI::Range(0, 4096));
+  cmd->add_option("--keyframe-rate-weight", a->keyframe_rate_weight,
+                  "lambda_k: while keyframe training is quantization-aware, its loss gains this "
+                  "times the bits of the attributes coded as values, per 100 kilobits (default: "
+                  "the rate point's, 0)")
+      ->check(CLI::Range(0.0, 1e3));
   cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
 }
@@ -255,6 +260,7 @@ Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* option
     options->quantization.sh_dc_codebook = k[1];
     options->quantization.sh_rest_codebook = k[2];
   }
+  if (args.keyframe_rate_weight >= 0) options->keyframe_rate_weight = args.keyframe_rate_weight;
   if (options->gop.fixed_length > 0) options->gop.adaptive = false;
   options->keyframe = KeyframeSchedule(args);
   return Status::Ok();
@@ -320,6 +326,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_bits", QuantizationBits(o.quantization)},
           {"compensation_bits", QuantizationBits(o.compensation_quantization)},
           {"keyframe_codebooks", Codebooks(o.quantization)},
+          {"keyframe_rate_weight", o.keyframe_rate_weight},
           {"fps", args.fps},
           {"seed", o.seed}};
 }

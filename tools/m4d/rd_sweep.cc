@@ -52,6 +52,7 @@ KeyframeTrainingOptions SweepKeyframeTraining(const EncodeArguments& args) {
   o.sh_degree = args.encoder.sh_degree;
   o.threads = args.encoder.threads;
   o.seed = args.encoder.seed;
+  o.rate_weight = std::max(0.0, args.keyframe_rate_weight);
   std::copy(args.encoder.background, args.encoder.background + 3, o.background);
   return o;
 }

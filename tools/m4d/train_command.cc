@@ -36,15 +36,19 @@ struct TrainArguments {
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
   int quantization_aware = -1;     // iterations (< 0: the schedule's)
+  double rate_weight = -1;         // lambda_k of the keyframe's rate term (< 0: the point's)
   std::string rate_point = "r4";   // the keyframe bits the model is trained and coded for
   std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
 };
 
-Status TrainingQuantization(const TrainArguments& args, GaussianQuantization* quantization) {
+// The keyframe bits and rate term the model is trained for: the rate point's, or the arguments'.
+Status TrainingRate(const TrainArguments& args, KeyframeTrainingOptions* options) {
   RatePointSettings point;
   M4D_RETURN_IF_ERROR(FindRatePoint(args.rate_point, &point));
+  options->rate_weight = args.rate_weight >= 0 ? args.rate_weight : point.keyframe_rate_weight;
+  GaussianQuantization* quantization = &options->quantization;
   *quantization = point.keyframe;
   if (args.keyframe_bits.size() == 6) {
     quantization->position_bits = args.keyframe_bits[0];
@@ -98,7 +102,7 @@ Status RunTrain(const TrainArguments& args) {
   }
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
-  M4D_RETURN_IF_ERROR(TrainingQuantization(args, &options.quantization));
+  M4D_RETURN_IF_ERROR(TrainingRate(args, &options));
   options.threads = args.threads;
   options.seed = args.seed;
   PruneShareChoice choice;
@@ -175,6 +179,10 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "the last N iterations render the model as coded at the rate point (default: "
                   "a quarter of the run; 0: none)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--keyframe-rate-weight", args->rate_weight,
+                  "lambda_k: while quantization-aware, the loss gains this times the keyframe "
+                  "attributes' bits per 100 kilobits (default: the rate point's, 0)")
+      ->check(CLI::Range(0.0, 1e3));
   cmd->add_option("--rate-point", args->rate_point,
                   "the rate point whose keyframe bits the model is trained for (quantization-"
                   "aware) and coded at in the report")

@@ -55,6 +55,8 @@ struct EncoderOptions {
   MlpConfig mlp;    // one hidden layer of 64
   float grid_steps[kMaxGridLevels] = {1.0f / 32, 1.0f / 32, 1.0f / 32, 1.0f / 32};
   GaussianQuantization quantization;  // keyframes
+  // lambda_k of keyframe training and retraining (keyframe_rate_term.h; 0: no rate term).
+  double keyframe_rate_weight = 0.0;
   // Compensated Gaussians: a few hundred per frame, where every byte of each one counts.
   GaussianQuantization compensation_quantization;
   int mlp_bits = 12;

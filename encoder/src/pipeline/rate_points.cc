@@ -113,6 +113,7 @@ void ApplyRatePoint(const RatePointSettings& point, EncoderOptions* options) {
   options->motion.rate_weight = point.motion_rate_weight;
   options->compensation_thresholds.gradient = point.replication_gradient;
   options->quantization = point.keyframe;
+  options->keyframe_rate_weight = point.keyframe_rate_weight;
   options->compensation_quantization = point.compensation;
 }
 

@@ -23,6 +23,7 @@ struct RatePointSettings {
   double motion_rate_weight = 0;      // lambda_2
   float replication_gradient = 0;     // tau_g
   GaussianQuantization keyframe;      // both keyframe layers
+  double keyframe_rate_weight = 0;    // lambda_k of keyframe training
   GaussianQuantization compensation;  // the compensated Gaussians of inter frames
 };
 

@@ -242,6 +242,7 @@ KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options) {
   o.threads = options.threads;
   o.seed = options.seed;
   o.quantization = options.quantization;
+  o.rate_weight = options.keyframe_rate_weight;
   std::copy(options.background, options.background + 3, o.background);
   return o;
 }
@@ -594,6 +595,7 @@ KeyframeTrainingOptions SequenceEncoder::RetrainingOptions(int frame, bool depen
   o.quantization_aware_iterations =
       options_.keyframe.quantization_aware_iterations > 0 ? options_.retrain_iterations / 4 : 0;
   o.quantization = options_.quantization;
+  o.rate_weight = options_.keyframe_rate_weight;
   o.start_sh_degree = options_.sh_degree;
   o.threads = options_.threads;
   o.seed = options_.seed + static_cast<uint64_t>(frame);

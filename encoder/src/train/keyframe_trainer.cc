@@ -11,6 +11,7 @@
 #include "render/splat_renderer.h"
 #include "train/gaussian_optimizer.h"
 #include "train/importance_pruning.h"
+#include "train/keyframe_rate_term.h"
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/scene_extent.h"
@@ -108,6 +109,7 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
     return OptionError("Gaussians per pixel");
   }
   if (o.quantization_aware_iterations < 0) return OptionError("negative quantization-aware count");
+  if (!(o.rate_weight >= 0.0 && o.rate_weight <= 1e3)) return OptionError("rate weight");
   if (!(o.importance_prune_share >= 0.0f && o.importance_prune_share < 1.0f)) {
     return OptionError("importance prune share outside [0, 1)");
   }
@@ -303,6 +305,10 @@ Status KeyframeTrainer::Step() {
     densified = true;  // this iteration's gradients belong to the Gaussians before pruning
   }
   if (!densified) {
+    if (QuantizationAware()) {
+      AddKeyframeRateGradients(model_, options_.quantization, options_.rate_weight,
+                               options_.frozen_gaussians, &gradients_);
+    }
     ZeroLeadingRows(options_.frozen_gaussians, &gradients_);
     StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
   }

@@ -73,6 +73,9 @@ struct KeyframeTrainingOptions {
   // will reconstruct it, and apply the gradients to the unquantized values (straight-through):
   // the model learns values whose quantization renders well (0: none).
   int quantization_aware_iterations = 0;
+  // While quantization-aware, the loss gains lambda_k times the bits of the attributes the
+  // keyframe coder codes as values, per 100 kilobits (keyframe_rate_term.h; 0: none).
+  double rate_weight = 0.0;
   // The first this many Gaussians of the initial model stay exactly as given (a dependent
   // keyframe's kept static set): no step, never split or pruned (their clones are free).
   size_t frozen_gaussians = 0;
