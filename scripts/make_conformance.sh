@@ -77,6 +77,7 @@ streams=(
   "synth_v03_appearance|--gops 2 --frames-per-gop 3 --static 600 --dynamic 1500 --sh-degree 1 --motion-fraction 0.002 --seed 35 --appearance-fraction 0.3 --dependent-gops --bitstream-minor 3"
   "synth_sh2_codebooks|--gops 2 --frames-per-gop 3 --static 2000 --dynamic 600 --sh-degree 2 --motion-fraction 0.002 --seed 37 --codebook 16"
   "synth_sh1_codebook_300|--gops 1 --frames-per-gop 2 --static 9700 --dynamic 200 --sh-degree 1 --motion-fraction 0.002 --seed 38 --codebook 300"
+  "synth_v06_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 40 --dependent-gops --bitstream-minor 6"
   "synth_v05_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 39 --dependent-gops --bitstream-minor 5"
   "synth_v04_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 36 --dependent-gops --bitstream-minor 4"
   "synth_v02_sh2|--gops 2 --frames-per-gop 3 --static 600 --dynamic 200 --sh-degree 2 --motion-fraction 0.002 --seed 33 --bitstream-minor 2"

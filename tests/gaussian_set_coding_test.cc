@@ -22,6 +22,7 @@
 #include "gaussian_set_test_util.h"
 #include "layers/gaussian_set_reader.h"
 #include "layers/gaussian_set_writer.h"
+#include "layers/octree_positions.h"
 #include "layers/rotation_coding.h"
 #include "layers/smallest_three.h"
 
@@ -93,6 +94,7 @@ struct ParsedSet {
   size_t groups_offset = 0;  // first byte after count
   std::vector<ParsedGroup> groups;
   size_t draco_size_offset = 0;
+  bool octree = false;  // positions in octree_positions() (0.7)
   std::vector<uint8_t> draco;
 };
 
@@ -100,16 +102,17 @@ constexpr RotationCoding kFour = RotationCoding::kFourComponents;
 constexpr RotationCoding kThree = RotationCoding::kSmallestThree;
 
 // The syntax of the newest version with that rotation coding: four components are 0.4's, without
-// codebooks.
-GaussianSetSyntax SyntaxOf(RotationCoding rotation) {
+// codebooks or octree positions.
+GaussianSetSyntax SyntaxOf(RotationCoding rotation, bool octree = true) {
   GaussianSetSyntax syntax;
   syntax.rotation = rotation;
   syntax.codebooks = rotation == kThree;
+  syntax.octree_positions = rotation == kThree && octree;
   return syntax;
 }
 
-ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree,
-                RotationCoding rotation = kThree) {
+ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree, RotationCoding rotation = kThree,
+                bool octree = true) {
   ParsedSet p;
   ByteReader r(bytes.data(), bytes.size());
   EXPECT_TRUE(r.ReadVarUint(&p.count));
@@ -135,6 +138,17 @@ ParsedSet Parse(const std::vector<uint8_t>& bytes, int sh_degree,
       EXPECT_EQ(codebook_size, 0u) << "Parse reads scalar groups only";
     }
     p.groups.push_back(g);
+  }
+  uint8_t flag = 0;
+  if (SyntaxOf(rotation, octree).octree_positions && p.groups[0].bits > 0) {
+    EXPECT_TRUE(r.ReadU8(&flag));
+  }
+  p.octree = flag != 0;
+  if (flag) {  // 0.7: octree_positions() (spec 5.6)
+    std::vector<uint32_t> q(3 * static_cast<size_t>(p.count));
+    EXPECT_TRUE(
+        ReadOctreePositions(&r, RansLayout::kInterleaved, p.count, p.groups[0].bits, q.data())
+            .ok());
   }
   p.draco_size_offset = r.position();
   uint32_t size = 0;
@@ -162,14 +176,25 @@ GaussianQuantization FourComponents(GaussianQuantization q) {
   return q;
 }
 
+// Version 0.6's syntax: positions are Draco's first attribute (for the Draco payload's tests).
+GaussianQuantization PositionsInDraco(GaussianQuantization q = GaussianQuantization()) {
+  q.syntax = SyntaxOf(kThree, false);
+  return q;
+}
+
 Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out,
-            uint32_t max_count = kMaxGaussiansPerSet, RotationCoding rotation = kThree) {
+            uint32_t max_count = kMaxGaussiansPerSet, RotationCoding rotation = kThree,
+            bool octree = true) {
   ByteReader r(bytes.data(), bytes.size());
-  const Status status = ReadGaussianSet(&r, sh_degree, SyntaxOf(rotation), max_count, out);
+  const Status status = ReadGaussianSet(&r, sh_degree, SyntaxOf(rotation, octree), max_count, out);
   if (status.ok()) {
     EXPECT_EQ(r.remaining(), 0u);
   }
   return status;
+}
+
+Status ReadPositionsInDraco(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out) {
+  return Read(bytes, sh_degree, out, kMaxGaussiansPerSet, kThree, false);
 }
 
 // The spec formula, one IEEE operation per statement.
@@ -703,8 +728,8 @@ TEST(GaussianSetCodingTest, RejectsValuesNotBelowTwoToTheBits) {
 
 TEST(GaussianSetCodingTest, RejectsGarbageDracoPayloads) {
   const GaussianSet set = RandomSet(100, 1, 16);
-  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
-  const ParsedSet p = Parse(bytes, 1);
+  const std::vector<uint8_t> bytes = WriteSet(set, PositionsInDraco());
+  const ParsedSet p = Parse(bytes, 1, kThree, false);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
   std::mt19937 rng(17);
@@ -716,7 +741,7 @@ TEST(GaussianSetCodingTest, RejectsGarbageDracoPayloads) {
       const size_t extra = 1 + rng() % 400;
       for (size_t i = 0; i < extra; ++i) draco.push_back(static_cast<uint8_t>(rng()));
       GaussianSet decoded;
-      EXPECT_FALSE(Read(Reassemble(bytes, p, p.count, draco), 1, &decoded).ok());
+      EXPECT_FALSE(ReadPositionsInDraco(Reassemble(bytes, p, p.count, draco), 1, &decoded).ok());
     }
   }
 }
@@ -727,10 +752,10 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
   GaussianSet set = RandomSet(3000, 0, 19);
   bool seen[2] = {false, false};
   for (int position_bits : {24, 0}) {  // first attribute: 24-bit positions, or log scales
-    GaussianQuantization q;
+    GaussianQuantization q = PositionsInDraco();
     q.position_bits = position_bits;
     const std::vector<uint8_t> bytes = WriteSet(set, q);
-    const ParsedSet p = Parse(bytes, 0);
+    const ParsedSet p = Parse(bytes, 0, kThree, false);
     // The rotation's index is an attribute of its own, without a group header.
     const size_t coded = p.groups.size() + 1 - (position_bits == 0 ? 1 : 0);
     size_t at = 17 + 6 * coded;      // the first attribute's data
@@ -746,7 +771,7 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
     w.WriteVarUint(1u << 26);
     draco.insert(draco.end(), p.draco.begin() + end + 1, p.draco.end());
     GaussianSet decoded;
-    const Status status = Read(Reassemble(bytes, p, p.count, draco), 0, &decoded);
+    const Status status = ReadPositionsInDraco(Reassemble(bytes, p, p.count, draco), 0, &decoded);
     EXPECT_EQ(status.code(), M4D_ERR_BITSTREAM);
     EXPECT_NE(status.message().find("too large"), std::string::npos) << status.message();
   }
@@ -861,8 +886,8 @@ TEST(GaussianSetCodingTest, ComposeSmallestThreeRoundsEachOperation) {
 
 TEST(GaussianSetCodingTest, RejectsARotationIndexAboveThree) {
   GaussianSet set = RandomSet(100, 0, 43);
-  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
-  const ParsedSet p = Parse(bytes, 0);
+  const std::vector<uint8_t> bytes = WriteSet(set, PositionsInDraco());
+  const ParsedSet p = Parse(bytes, 0, kThree, false);
   std::unique_ptr<draco::PointCloud> pc = DracoDecode(p.draco);
   ASSERT_EQ(pc->num_attributes(), 6);  // position, scale, rotation, its index, opacity, DC
   draco::PointAttribute* index = pc->attribute(3);
@@ -872,7 +897,7 @@ TEST(GaussianSetCodingTest, RejectsARotationIndexAboveThree) {
     const std::vector<uint8_t> draco =
         DracoEncode(*pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING, draco::PREDICTION_NONE);
     GaussianSet decoded;
-    const Status status = Read(Reassemble(bytes, p, p.count, draco), 0, &decoded);
+    const Status status = ReadPositionsInDraco(Reassemble(bytes, p, p.count, draco), 0, &decoded);
     EXPECT_EQ(status.code(), M4D_ERR_BITSTREAM);
     EXPECT_NE(status.message().find("rotation index"), std::string::npos) << status.message();
   }
@@ -880,11 +905,55 @@ TEST(GaussianSetCodingTest, RejectsARotationIndexAboveThree) {
   const uint8_t good = 3;
   index->SetAttributeValue(draco::AttributeValueIndex(7), &good);
   GaussianSet decoded;
-  EXPECT_TRUE(Read(Reassemble(bytes, p, p.count,
-                              DracoEncode(*pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING,
-                                          draco::PREDICTION_NONE)),
-                   0, &decoded)
-                  .ok());
+  EXPECT_TRUE(
+      ReadPositionsInDraco(Reassemble(bytes, p, p.count,
+                                      DracoEncode(*pc, draco::POINT_CLOUD_SEQUENTIAL_ENCODING,
+                                                  draco::PREDICTION_NONE)),
+                           0, &decoded)
+          .ok());
+}
+
+}  // namespace
+}  // namespace m4d
+
+namespace m4d {
+namespace {
+
+// Version 0.7 (spec 5.6): the writer codes positions as an octree where that is smaller than
+// Draco's attribute, on keyframe-like sets, and keeps Draco's on small ones; both decode to the
+// positions 0.6's syntax gives.
+TEST(GaussianSetCodingTest, PositionsAreAnOctreeWhereThatIsSmaller) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (size_t n : {size_t{40}, size_t{20000}}) {
+    GaussianSet set = RandomSet(n, 1, 7);
+    for (size_t i = 0; i < n; ++i) {  // a wavy surface, as trained Gaussians lie on
+      const float x = u(rng), y = u(rng);
+      set.positions[3 * i] = x;
+      set.positions[3 * i + 1] = y;
+      set.positions[3 * i + 2] = 0.2f * std::sin(3.0f * x) * std::cos(2.0f * y);
+    }
+    const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
+    const std::vector<uint8_t> v06 = WriteSet(set, PositionsInDraco());
+    const ParsedSet p = Parse(bytes, 1);
+    EXPECT_EQ(p.octree, n > 40) << n;
+    if (p.octree) {
+      EXPECT_LT(bytes.size(), v06.size()) << n;
+    }
+    EXPECT_LE(bytes.size(), v06.size() + 1) << n;  // the flag at most
+    GaussianSet decoded, decoded_v06;
+    ASSERT_TRUE(Read(bytes, 1, &decoded).ok());
+    ASSERT_TRUE(ReadPositionsInDraco(v06, 1, &decoded_v06).ok());
+    EXPECT_EQ(decoded.positions, decoded_v06.positions) << n;
+    EXPECT_EQ(decoded.sh, decoded_v06.sh) << n;
+  }
+  // A flag other than 0 or 1.
+  const std::vector<uint8_t> bytes = WriteSet(RandomSet(40, 1, 8), GaussianQuantization());
+  const ParsedSet p = Parse(bytes, 1);
+  std::vector<uint8_t> bad = bytes;
+  bad[p.draco_size_offset - 1] = 2;
+  GaussianSet decoded;
+  EXPECT_EQ(Read(bad, 1, &decoded).code(), M4D_ERR_BITSTREAM);
 }
 
 }  // namespace

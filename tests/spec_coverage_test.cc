@@ -20,6 +20,8 @@
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 
+#include "common/byte_reader.h"
+#include "layers/octree_positions.h"
 #include "m4d/m4d.h"
 
 namespace {
@@ -56,6 +58,7 @@ class Reader {
     return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
   }
   bool done() const { return pos_ == size_; }
+  size_t remaining() const { return size_ - pos_; }
   // The next byte, or null at the end.
   const uint8_t* Here() const { return pos_ < size_ ? data_ + pos_ : nullptr; }
 
@@ -117,10 +120,12 @@ struct Walk {
     const int k = (sh_degree + 1) * (sh_degree + 1);
     const bool smallest_three = version_minor >= 5;
     const int components[6] = {3, 3, smallest_three ? 3 : 4, 1, 3, 3 * (k - 1)};
+    const bool octree = version_minor >= 7;  // positions may be outside Draco (5.6)
     int coded_before_rotation = 0;
-    uint32_t rotation_bits = 0;
+    uint32_t rotation_bits = 0, position_bits = 0;
     for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
       const uint32_t bits = r->U8(), per_component = r->U8();
+      if (g == 0) position_bits = bits;
       if (g < 2 && bits > 0) ++coded_before_rotation;
       if (g == 2) rotation_bits = bits;
       if (bits == 0) Add("bits=0");
@@ -132,6 +137,12 @@ struct Walk {
       Add(per_component ? "per_component=1" : "per_component=0");
       r->Skip(8u * (per_component ? components[g] : 1));
       if (version_minor >= 6) Codebook(r, g, static_cast<uint32_t>(components[g]));
+    }
+    if (octree && position_bits > 0) {
+      const uint32_t flag = r->U8();
+      Add(flag ? "octree=1" : "octree=0");
+      if (flag) Octree(r, count, static_cast<int>(position_bits));
+      if (flag) --coded_before_rotation;  // positions are not a Draco attribute
     }
     const uint32_t draco = r->VarUint();
     if (smallest_three) {
@@ -154,6 +165,19 @@ struct Walk {
     Add("codebook,group=" + std::to_string(group));
     Add(size <= 256 ? "codebook_index=uint8" : "codebook_index=uint16");
     SymbolBlock(r, size * components);
+  }
+
+  // 5.6 (0.7): octree_positions(), decoded by the SDK's reader to see its leaves.
+  void Octree(Reader* r, uint32_t count, int bits) {
+    m4d::ByteReader reader(r->Here(), r->remaining());
+    std::vector<uint32_t> q(3 * static_cast<size_t>(count));
+    ASSERT_TRUE(
+        m4d::ReadOctreePositions(&reader, m4d::RansLayout::kInterleaved, count, bits, q.data())
+            .ok());
+    r->Skip(reader.position());
+    for (uint32_t i = 1; i < count; ++i) {
+      if (std::equal(&q[3 * i], &q[3 * i] + 3, &q[3 * (i - 1)])) Add("octree_repeats>0");
+    }
   }
 
   // 5.4: the indices of smallest-three rotations, Draco attribute `j` of the set's payload.

@@ -130,6 +130,14 @@ size_t Find(const Packet& p, const char* text) {
   return p.size();
 }
 
+// Offset in a set packet of the octree flag (version 0.7) of a set whose positions are in
+// Draco: the byte before draco_size, the varuint before the Draco magic.
+size_t OctreeFlagOffset(const Packet& p) {
+  size_t i = Find(p, "DRACO") - 1;  // draco_size's last byte
+  while (p[i - 1] & 0x80) --i;
+  return i - 1;
+}
+
 // An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
 Packet AppearancePacket(float step, uint32_t values = 3 * 80) {
   std::vector<int32_t> q(values);
@@ -306,6 +314,12 @@ std::vector<Case> Cases() {
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kDynamic];
          SetVaruint(&p, PositionCodebookOffset(p), 4097);
+       }},
+      {"octree_flag_not_binary", "M4D_ERR_BITSTREAM", "a set's octree flag 2 (version 0.7: 0 or 1)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kStatic];
+         p[OctreeFlagOffset(p)] = 2;
+         FixCrcs(&p);
        }},
       {"draco_bad_magic", "M4D_ERR_BITSTREAM", "the Draco header's magic damaged",
        [](Stream* s, std::vector<uint8_t>*) {

@@ -20,6 +20,9 @@ constexpr uint32_t kMaxAlphabet = 4096;
 // coded with at most kMaxCodebookBits bits.
 constexpr uint32_t kMaxCodebookSize = 4096;
 constexpr int kMaxCodebookBits = 12;
+// From version 0.7, octree_positions() codes the Gaussians after the first at a leaf as
+// low + kOctreeRepeatRadix * high, each within one symbol block's alphabet (spec 5.6).
+constexpr int32_t kOctreeRepeatRadix = 4096;
 constexpr int kBrickSize = 8;
 constexpr int kRansPrecision = 15;
 constexpr uint32_t kRansTotal = 1u << kRansPrecision;

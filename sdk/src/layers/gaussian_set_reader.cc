@@ -20,6 +20,7 @@
 
 #include "common/spec_limits.h"
 #include "entropy/symbol_block_reader.h"
+#include "layers/octree_positions.h"
 
 namespace m4d {
 namespace {
@@ -46,8 +47,9 @@ struct GroupCoding {
   bool rotation_index = false;
   float min[kMaxGroupComponents];
   float step[kMaxGroupComponents];
-  uint32_t codebook_size = 0;   // 0: scalar values
-  std::vector<float> codebook;  // dequantized entries, [entry][component]
+  uint32_t codebook_size = 0;    // 0: scalar values
+  std::vector<float> codebook;   // dequantized entries, [entry][component]
+  std::vector<uint32_t> octree;  // positions from 0.7: q of each Gaussian, not in Draco
 };
 
 draco::DataType DracoDataType(int bits) {
@@ -311,7 +313,7 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
   bool smallest_three = false;
   for (int k = 0; k < num_groups; ++k) {
     smallest_three = smallest_three || groups[k].rotation_index;
-    if (groups[k].bits > 0) coded[num_coded++] = &groups[k];
+    if (groups[k].bits > 0 && groups[k].octree.empty()) coded[num_coded++] = &groups[k];
   }
 
   std::unique_ptr<draco::PointCloud> pc;
@@ -359,6 +361,11 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
       for (uint32_t i = 0; i < count; ++i, dst += stride) {
         std::memcpy(dst, value, sizeof(float) * static_cast<size_t>(g.components));
       }
+      continue;
+    }
+    if (!g.octree.empty()) {
+      Dequantize<uint32_t>(reinterpret_cast<const uint8_t*>(g.octree.data()), count, g, dst,
+                           stride);  // below 2^bits by construction
       continue;
     }
     bool ok;
@@ -499,6 +506,17 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSynta
     }
   }
 
+  uint8_t octree = 0;
+  if (syntax.octree_positions && groups[kGroupPosition].bits > 0 &&
+      (!reader->ReadU8(&octree) || octree > 1)) {
+    return BitstreamError("gaussian_set: octree flag truncated or not 0 or 1");
+  }
+  if (octree) {
+    GroupCoding& g = groups[kGroupPosition];
+    g.octree.resize(3 * static_cast<size_t>(count));
+    M4D_RETURN_IF_ERROR(
+        ReadOctreePositions(reader, syntax.rans_layout, count, g.bits, g.octree.data()));
+  }
   uint32_t draco_size;
   const uint8_t* draco_payload;
   if (!reader->ReadVarUint(&draco_size) || draco_size == 0 ||

@@ -12,7 +12,8 @@ namespace m4d {
 struct GaussianSetSyntax {
   RotationCoding rotation = RotationCoding::kSmallestThree;  // smallest-three from 0.5 on
   bool codebooks = true;                                     // codebook_size fields from 0.6 on
-  RansLayout rans_layout = RansLayout::kInterleaved;         // of the codebook entries
+  RansLayout rans_layout = RansLayout::kInterleaved;         // of codebooks and the octree
+  bool octree_positions = true;  // positions as octree_positions() from 0.7 on, else in Draco
 };
 
 }  // namespace m4d
