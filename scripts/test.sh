@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds, checks formatting, checks that a clang
 # Debug build decodes bit-identically to the gcc Release build, runs our decoder through the
-# conformance runner, runs a short fuzz session, runs the whole test suite, installs the SDK
+# conformance runner, builds the WebAssembly decoder and checks it the same way under Node.js
+# (scripts/test_web.sh), runs a short fuzz session, runs the whole test suite, installs the SDK
 # alone and builds out-of-tree consumers against it, then builds
 # everything with ASan and UBSan and runs the whole test suite again under them.
 set -euo pipefail
@@ -12,6 +13,7 @@ scripts/build.sh
 scripts/check_format.sh
 scripts/compare_builds.sh
 scripts/conformance_run.sh --layers-flag --layers build/release/tools/m4d_decode | tail -1
+scripts/test_web.sh
 scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
 ctest --test-dir build/release --output-on-failure -j2
 scripts/check_install.sh

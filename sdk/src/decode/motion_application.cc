@@ -30,6 +30,8 @@ void RunKernel(MotionKernelKind kind, const GridConfig& config, const MotionGrid
   if (kind == MotionKernelKind::kAvx512) {
     return ApplyMotionAvx512(config, grid, mlp, set, begin, end);
   }
+#else
+  (void)kind;  // builds without the AVX-512 kernel (other CPUs, WebAssembly)
 #endif
   ApplyMotionBaseline(config, grid, mlp, set, begin, end);
 }

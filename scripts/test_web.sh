@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Builds the WebAssembly decoder (scripts/build_web.sh) and checks it under Node.js: the whole
+# conformance suite through the runner's command-line contract (web/tools/m4d_decode.mjs,
+# streams pushed in 4 KB chunks as a page receives them), then the JavaScript API's tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/build_web.sh >/dev/null
+scripts/conformance_run.sh --layers-flag --layers node web/tools/m4d_decode.mjs --chunk 4096 |
+  tail -1 | sed 's/^/WebAssembly /'
+node --test web/test/

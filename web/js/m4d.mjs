@@ -1,0 +1,200 @@
+// m4d.mjs - the M4D decoder for JavaScript: the SDK's decoder compiled to WebAssembly
+// (m4d_wasm.mjs and m4d_wasm.wasm beside this file), for browsers and Node.js.
+//
+//   import { loadM4d } from './m4d.mjs';
+//   const m4d = await loadM4d();
+//   const decoder = m4d.openDecoder();          // { layers: 'all' | 'static' | 'dynamic' }
+//   decoder.push(bytes);                        // any chunks: Uint8Array or ArrayBuffer
+//   decoder.end();                              // when no more bytes come
+//   for (let f; (f = decoder.nextFrame()); ) {  // null: more bytes needed, or the end
+//     draw(f.dynamic.positions, ...);           // Float32Array views, valid until the next call
+//   }
+//   decoder.close();
+//
+// Decoding is the native SDK's, bit for bit: frame.hash() is the normative frame hash of
+// bitstream-spec 7. Damaged streams never throw: the damage is counted (decoder.errors) and
+// reading resumes at the next packet header or GOP, as the spec's section 3 says.
+import createM4dModule from './m4d_wasm.mjs';
+
+const LAYER_BITS = { static: 1, dynamic: 2, all: 3 };
+// The M4D_ERR_* codes of m4d.h, by value.
+const ERROR_NAMES = {
+  [-1]: 'M4D_ERR_AGAIN', [-2]: 'M4D_ERR_INVALID_ARG', [-3]: 'M4D_ERR_NOMEM',
+  [-4]: 'M4D_ERR_BITSTREAM', [-5]: 'M4D_ERR_CHECKSUM', [-6]: 'M4D_ERR_UNSUPPORTED',
+  [-7]: 'M4D_ERR_LIMIT', [-100]: 'TRUNCATED',
+};
+
+// The name of an error code ('' for 0).
+export function errorCodeName(code) {
+  return code === 0 ? '' : ERROR_NAMES[code] || `error ${code}`;
+}
+const TRUNCATED = -100;  // m4dw_stream_last_error_code: the stream ends inside a packet
+
+// Loads the module. options.wasmBinary (bytes of m4d_wasm.wasm) skips fetching it; Node.js
+// reads it from beside this file.
+export async function loadM4d(options = {}) {
+  const moduleOptions = {};
+  if (options.wasmBinary) {
+    moduleOptions.wasmBinary = options.wasmBinary;
+  } else if (typeof process === 'object' && process.versions && process.versions.node) {
+    const { readFile } = await import('node:fs/promises');
+    moduleOptions.wasmBinary = await readFile(new URL('./m4d_wasm.wasm', import.meta.url));
+  }
+  return new M4d(await createM4dModule(moduleOptions));
+}
+
+export class M4d {
+  constructor(wasm) {
+    this.wasm = wasm;
+  }
+
+  // The SDK's version string, e.g. "0.7.0".
+  version() {
+    return this.wasm.UTF8ToString(this.wasm._m4d_version());
+  }
+
+  // The message of an M4D_ERR_* code.
+  errorString(code) {
+    return code === TRUNCATED ? 'truncated' : this.wasm.UTF8ToString(this.wasm._m4d_error_string(code));
+  }
+
+  // A decoder; options.layers: 'all' (default), 'static' or 'dynamic' (the other layer's
+  // packets are skipped, never decoded).
+  openDecoder(options = {}) {
+    const layers = LAYER_BITS[options.layers || 'all'];
+    if (layers === undefined) throw new RangeError(`layers must be all, static or dynamic`);
+    const stream = this.wasm._m4dw_stream_open(layers);
+    if (!stream) throw new Error('m4d: cannot open a decoder (out of memory)');
+    return new M4dDecoder(this, stream);
+  }
+}
+
+export class M4dDecoder {
+  constructor(m4d, stream) {
+    this.m4d = m4d;
+    this.wasm = m4d.wasm;
+    this.stream = stream;
+    this.scratch = this.wasm._malloc(128);  // m4d_get_stream_info, m4d_frame_hash
+  }
+
+  // Appends bytes of the stream (the next chunk, any size).
+  push(bytes) {
+    const data = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+    const at = this.wasm._m4dw_stream_reserve(this.live(), data.length);
+    if (!at) throw new Error('m4d: out of memory, or push after end');
+    this.wasm.HEAPU8.set(data, at);
+  }
+
+  // No more bytes come: a packet cut at the end is then counted as damage.
+  end() {
+    this.wasm._m4dw_stream_end(this.live());
+  }
+
+  // Decodes up to the next frame. Returns an M4dFrame, or null when more bytes are needed
+  // (or, after end(), the stream is over). The previous frame is released.
+  nextFrame() {
+    if (!this.wasm._m4dw_stream_next_frame(this.live())) return null;
+    return new M4dFrame(this);
+  }
+
+  // Restarts at the random-access point at or before frameIndex, among the bytes pushed so
+  // far; nextFrame() then returns frameIndex first. Returns false when that frame has not
+  // arrived yet; throws when no random-access GOP precedes it.
+  seek(frameIndex) {
+    const r = this.wasm._m4dw_stream_seek(this.live(), frameIndex >>> 0);
+    if (r === -1) return false;
+    if (r < 0) throw new Error(`m4d: cannot seek to frame ${frameIndex}: ${this.m4d.errorString(r)}`);
+    return true;
+  }
+
+  // What the decoder knows of the stream (null before the first SEQUENCE_HEADER).
+  streamInfo() {
+    const context = this.wasm._m4dw_stream_context(this.live());
+    if (this.wasm._m4d_get_stream_info(context, this.scratch) < 0) return null;
+    const u = this.wasm.HEAPU32.subarray(this.scratch >> 2, (this.scratch >> 2) + 14);
+    return {
+      bitstreamVersion: `${u[0]}.${u[1]}`, profile: u[2], shDegree: u[3],
+      fps: u[5] ? u[4] / u[5] : 0, fpsNum: u[4], fpsDen: u[5], numFrames: u[6],
+      staticLayerCoded: (u[7] & 1) !== 0, framesDecoded: u[8], gops: u[9],
+      randomAccessGops: u[10], lastKeyframeIndex: u[11], lastRandomAccessIndex: u[12],
+    };
+  }
+
+  // Damage met so far: how many errors, the first one's code, the last one's byte offset,
+  // code and message. Codes are M4D_ERR_* values (names: M4D_ERR_BITSTREAM...), or -100,
+  // named TRUNCATED, when the stream ends inside a packet.
+  get errors() {
+    const s = this.live();
+    const code = this.wasm._m4dw_stream_last_error_code(s);
+    const first = this.wasm._m4dw_stream_first_error_code(s);
+    return {
+      count: this.wasm._m4dw_stream_error_count(s),
+      firstCode: first,
+      firstCodeName: errorCodeName(first),
+      lastOffset: this.wasm._m4dw_stream_last_error_offset(s),
+      lastCode: code,
+      lastCodeName: errorCodeName(code),
+      lastMessage: this.wasm.UTF8ToString(this.wasm._m4dw_stream_last_error_message(s)),
+    };
+  }
+
+  // Bytes passed over while resynchronising after damage.
+  get skippedBytes() {
+    return this.wasm._m4dw_stream_skipped_bytes(this.live());
+  }
+
+  // Bytes pushed so far (all are kept, for seeking).
+  get bufferedBytes() {
+    return this.wasm._m4dw_stream_buffered_bytes(this.live());
+  }
+
+  // Frees the decoder and its frame.
+  close() {
+    if (!this.stream) return;
+    this.wasm._m4dw_stream_close(this.stream);
+    this.wasm._free(this.scratch);
+    this.stream = 0;
+  }
+
+  live() {
+    if (!this.stream) throw new Error('m4d: the decoder is closed');
+    return this.stream;
+  }
+}
+
+// A decoded frame. Its arrays view the module's memory: valid until the decoder's next call.
+export class M4dFrame {
+  constructor(decoder) {
+    const wasm = decoder.wasm, s = decoder.stream;
+    this.decoder = decoder;
+    this.frameIndex = wasm._m4dw_frame_index(s);
+    this.isKeyframe = wasm._m4dw_frame_is_keyframe(s) !== 0;
+    this.layers = wasm._m4dw_frame_layers(s);
+    this.static = layerView(wasm, wasm._m4dw_frame_layer(s, 1));
+    this.dynamic = layerView(wasm, wasm._m4dw_frame_layer(s, 2));
+  }
+
+  // The normative frame hash (bitstream-spec 7), as 32 hex digits.
+  hash() {
+    const { wasm, scratch, stream } = this.decoder;
+    wasm._m4d_frame_hash(wasm._m4dw_frame(stream), scratch);
+    return Array.from(wasm.HEAPU8.subarray(scratch, scratch + 16), (b) => b.toString(16).padStart(2, '0')).join('');
+  }
+}
+
+// One layer's Gaussians (M4dGaussians: eight 32-bit words in wasm32), values as coded.
+function layerView(wasm, address) {
+  const w = wasm.HEAPU32.subarray(address >> 2, (address >> 2) + 8);
+  const count = w[0], coefficients = w[2];
+  const floats = (at, perGaussian) => (count ? wasm.HEAPF32.subarray(at >> 2, (at >> 2) + count * perGaussian) : new Float32Array(0));
+  return {
+    count,
+    shDegree: w[1],
+    shCoefficients: coefficients,
+    positions: floats(w[3], 3),
+    logScales: floats(w[4], 3),
+    rotations: floats(w[5], 4),
+    opacityLogits: floats(w[6], 1),
+    sh: floats(w[7], 3 * coefficients),
+  };
+}

@@ -1,0 +1,149 @@
+// Tests of the WebAssembly decoder's JavaScript API (web/js/m4d.mjs) on the conformance
+// streams. Run: node --test web/test/ (after scripts/build_web.sh).
+import assert from 'node:assert/strict';
+import { readFileSync, readdirSync } from 'node:fs';
+import { test } from 'node:test';
+
+const root = new URL('../../', import.meta.url);
+const moduleDir = process.env.M4D_WEB_MODULE_DIR
+  ? new URL(`file://${process.env.M4D_WEB_MODULE_DIR.replace(/\/?$/, '/')}`)
+  : new URL('build/web/module/', root);
+const { loadM4d } = await import(new URL('m4d.mjs', moduleDir));
+const m4d = await loadM4d();
+
+const streams = new URL('conformance/streams/', root);
+const invalid = new URL('conformance/invalid/', root);
+const read = (dir, name) => readFileSync(new URL(name, dir));
+const expectedLines = (dir, name) => read(dir, name).toString().split('\n').filter(Boolean);
+
+// Decodes `data` pushed in chunks of `chunk` bytes; returns the hash lines and the decoder
+// (ended, not closed).
+function decodeAll(data, { chunk = data.length, layers = 'all' } = {}) {
+  const decoder = m4d.openDecoder({ layers });
+  const lines = [];
+  const drain = () => {
+    for (let f; (f = decoder.nextFrame()); ) lines.push(`${f.frameIndex} ${f.hash()}`);
+  };
+  for (let at = 0; at < data.length; at += chunk) {
+    decoder.push(data.subarray(at, at + chunk));
+    drain();
+  }
+  decoder.end();
+  drain();
+  return { lines, decoder };
+}
+
+test('decodes bit-exactly whatever the chunk size', () => {
+  const data = read(streams, 'enc_adaptive_gop.m4d');
+  const expected = expectedLines(streams, 'enc_adaptive_gop.md5');
+  for (const chunk of [1, 23, 4096, data.length]) {
+    const { lines, decoder } = decodeAll(data, { chunk });
+    assert.deepEqual(lines, expected, `chunks of ${chunk} bytes`);
+    assert.equal(decoder.errors.count, 0);
+    assert.equal(decoder.bufferedBytes, data.length);
+    decoder.close();
+  }
+});
+
+test('outputs one layer when asked', () => {
+  const data = read(streams, 'synth_sh3_three_gops.m4d');
+  for (const layers of ['static', 'dynamic']) {
+    const { lines, decoder } = decodeAll(data, { layers });
+    assert.deepEqual(lines, expectedLines(streams, `synth_sh3_three_gops.${layers}.md5`));
+    decoder.close();
+  }
+  assert.throws(() => m4d.openDecoder({ layers: 'both' }), RangeError);
+});
+
+test('frames expose the layers as typed arrays of the stated sizes', () => {
+  const decoder = m4d.openDecoder();
+  decoder.push(read(streams, 'synth_sh3_three_gops.m4d'));
+  decoder.end();
+  const frame = decoder.nextFrame();
+  assert.equal(frame.frameIndex, 0);
+  assert.equal(frame.isKeyframe, true);
+  assert.equal(frame.layers, 3);
+  for (const layer of [frame.static, frame.dynamic]) {
+    assert.ok(layer.count > 0);
+    assert.equal(layer.shDegree, 3);
+    assert.equal(layer.shCoefficients, 16);
+    assert.equal(layer.positions.length, 3 * layer.count);
+    assert.equal(layer.logScales.length, 3 * layer.count);
+    assert.equal(layer.rotations.length, 4 * layer.count);
+    assert.equal(layer.opacityLogits.length, layer.count);
+    assert.equal(layer.sh.length, 48 * layer.count);
+    assert.ok(layer.positions.every(Number.isFinite));
+  }
+  const second = decoder.nextFrame();
+  assert.equal(second.frameIndex, 1);
+  assert.equal(second.isKeyframe, false);
+  decoder.close();
+  assert.throws(() => decoder.nextFrame(), /closed/);
+});
+
+test('reports the stream information', () => {
+  const decoder = m4d.openDecoder();
+  assert.equal(decoder.streamInfo(), null);
+  decoder.push(read(streams, 'synth_sh3_three_gops.m4d'));
+  decoder.end();
+  while (decoder.nextFrame());
+  const info = decoder.streamInfo();
+  assert.equal(info.bitstreamVersion, '0.7');
+  assert.equal(info.shDegree, 3);
+  assert.equal(info.framesDecoded, 12);
+  assert.equal(info.gops, 3);
+  assert.equal(info.randomAccessGops, 3);
+  assert.equal(info.lastKeyframeIndex, 8);
+  decoder.close();
+});
+
+test('seeks to a frame among the bytes received', () => {
+  const data = read(streams, 'synth_sh3_three_gops.m4d');
+  const expected = expectedLines(streams, 'synth_sh3_three_gops.md5');
+  const decoder = m4d.openDecoder();
+  decoder.push(data.subarray(0, data.length >> 1));
+  assert.equal(decoder.seek(11), false);  // not arrived yet
+  decoder.push(data.subarray(data.length >> 1));
+  decoder.end();
+  for (const target of [6, 11, 0]) {
+    assert.equal(decoder.seek(target), true);
+    const frame = decoder.nextFrame();
+    assert.equal(`${frame.frameIndex} ${frame.hash()}`, expected[target]);
+  }
+  assert.equal(decoder.seek(12), false);
+  decoder.close();
+});
+
+test('every invalid stream gives its frames and its first error, without throwing', () => {
+  const want = new Map(
+    read(invalid, 'EXPECTED').toString().split('\n')
+      .filter((l) => l && !l.startsWith('#'))
+      .map((l) => l.split(' ').slice(0, 2)));
+  const names = readdirSync(invalid).filter((n) => n.endsWith('.m4d'));
+  assert.equal(names.length, want.size);
+  for (const name of names) {
+    const base = name.slice(0, -4);
+    const { lines, decoder } = decodeAll(read(invalid, name), { chunk: 1000 });
+    assert.deepEqual(lines, expectedLines(invalid, `${base}.md5`), base);
+    assert.equal(decoder.errors.firstCodeName, want.get(base), base);
+    decoder.close();
+  }
+});
+
+test('a stream cut inside a packet is reported as truncated once it ends', () => {
+  const data = read(streams, 'enc_adaptive_gop.m4d');
+  const decoder = m4d.openDecoder();
+  decoder.push(data.subarray(0, 1000));
+  assert.equal(decoder.nextFrame(), null);
+  assert.equal(decoder.errors.count, 0);  // more bytes may come
+  decoder.end();
+  assert.equal(decoder.nextFrame(), null);
+  assert.equal(decoder.errors.count, 1);
+  assert.equal(decoder.errors.lastCodeName, 'TRUNCATED');
+  assert.throws(() => decoder.push(data.subarray(1000)), /after end/);
+  decoder.close();
+});
+
+test('reports its version', () => {
+  assert.match(m4d.version(), /^0\.7\.\d+$/);
+});
