@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libpng-dev libjpeg-dev zlib1g-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev gnuplot-nox
-  emscripten nodejs dpkg-dev
+  emscripten dpkg-dev chromium
 )
 
 missing=()
@@ -20,6 +20,12 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+
+# Node.js and npm (the web decoder's tests): Debian's, unless a Node.js is installed already
+# (another distribution of it brings its own npm, which Debian's npm package would conflict
+# with).
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
 
 if [ ${#missing[@]} -gt 0 ]; then
   sudo=""

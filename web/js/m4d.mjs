@@ -67,6 +67,78 @@ export class M4d {
     if (!stream) throw new Error('m4d: cannot open a decoder (out of memory)');
     return new M4dDecoder(this, stream);
   }
+
+  // The SDK's renderer drawing into `canvas` (an HTMLCanvasElement with an id) through a
+  // WebGL2 context it creates there. options.background: linear RGB behind the splats
+  // (default black); options.shDegree: largest SH degree evaluated (default 3).
+  openRenderer(canvas, options = {}) {
+    if (!canvas || !canvas.id) throw new TypeError('m4d: the canvas needs an id');
+    const [red, green, blue] = options.background || [0, 0, 0];
+    const selector = `#${canvas.id}`;
+    const size = this.wasm.lengthBytesUTF8(selector) + 1;
+    const text = this.wasm._malloc(size);
+    this.wasm.stringToUTF8(selector, text, size);
+    const renderer = this.wasm._m4dw_renderer_open(text, red, green, blue, options.shDegree ?? 3);
+    this.wasm._free(text);
+    if (!renderer) throw new Error('m4d: no WebGL2 context on the canvas, or the renderer failed');
+    return new M4dRenderer(this, renderer, canvas);
+  }
+}
+
+// Draws decoded frames into a canvas: upload a decoder's current frame, then draw it from any
+// camera (OpenCV axes: x right, y down, z forward; world to camera).
+export class M4dRenderer {
+  constructor(m4d, renderer, canvas) {
+    this.m4d = m4d;
+    this.wasm = m4d.wasm;
+    this.renderer = renderer;
+    this.canvas = canvas;
+  }
+
+  // Uploads the layers ('all', 'static' or 'dynamic') of the frame the decoder last returned.
+  upload(decoder, layers = 'all') {
+    const r = this.wasm._m4dw_renderer_upload(this.live(), decoder.live(), LAYER_BITS[layers] ?? 0);
+    if (r < 0) throw new Error(`m4d: upload failed: ${this.lastError()}`);
+  }
+
+  // Draws what was uploaded. camera: { fx, fy, cx, cy, rotation (9, row-major), translation
+  // (3), near (default 0.2) }, in pixels of the canvas's drawing buffer.
+  draw(camera) {
+    const at = this.wasm._m4dw_renderer_camera(this.live());
+    const u = this.wasm.HEAPU32, f = this.wasm.HEAPF32, w = at >> 2;
+    u[w] = this.canvas.width;
+    u[w + 1] = this.canvas.height;
+    f.set([camera.fx, camera.fy, camera.cx, camera.cy], w + 2);
+    f.set(camera.rotation, w + 6);
+    f.set(camera.translation, w + 15);
+    f[w + 18] = camera.near ?? 0.2;
+    if (this.wasm._m4dw_renderer_draw(this.renderer) < 0) {
+      throw new Error(`m4d: draw failed: ${this.lastError()}`);
+    }
+  }
+
+  // The last draw's splat count and stage timings in milliseconds.
+  stats() {
+    const at = this.wasm._m4dw_renderer_stats(this.live());
+    const visible = this.wasm.HEAPU32[at >> 2];
+    const ms = this.wasm.HEAPF64.subarray((at >> 3) + 1, (at >> 3) + 5);
+    return { visible, projectMs: ms[0], sortMs: ms[1], uploadMs: ms[2], drawMs: ms[3] };
+  }
+
+  lastError() {
+    return this.wasm.UTF8ToString(this.wasm._m4dw_renderer_last_error(this.live()));
+  }
+
+  close() {
+    if (!this.renderer) return;
+    this.wasm._m4dw_renderer_close(this.renderer);
+    this.renderer = 0;
+  }
+
+  live() {
+    if (!this.renderer) throw new Error('m4d: the renderer is closed');
+    return this.renderer;
+  }
 }
 
 export class M4dDecoder {
@@ -136,6 +208,13 @@ export class M4dDecoder {
       lastCodeName: errorCodeName(code),
       lastMessage: this.wasm.UTF8ToString(this.wasm._m4dw_stream_last_error_message(s)),
     };
+  }
+
+  // Replaces the static layer by the static layer of the frame `source` (another decoder)
+  // last returned, from the next frame on; null restores the stream's own.
+  setBackground(source) {
+    const r = this.wasm._m4dw_stream_set_background(this.live(), source ? source.live() : 0);
+    if (r < 0) throw new Error(`m4d: cannot set the background (${errorCodeName(r)})`);
   }
 
   // Bytes passed over while resynchronising after damage.

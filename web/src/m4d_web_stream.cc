@@ -8,10 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
-#include <string>
-#include <vector>
 
-#include "m4d/m4d.h"
+#include "m4d_web_stream.h"
 
 namespace {
 
@@ -22,23 +20,6 @@ constexpr size_t kHeaderSize = 24;  // bitstream-spec 3
 constexpr int kTruncated = -100;
 
 }  // namespace
-
-struct M4dWebStream {
-  M4dContext* context = nullptr;
-  std::vector<uint8_t> bytes;  // everything received, kept for seeking
-  size_t position = 0;         // the next packet (or where a resynchronisation resumes)
-  bool resynchronising = false;
-  bool ended = false;
-  int64_t first_frame = -1;  // frames before it are dropped (after a seek)
-  M4dFrame frame = {};
-  bool holding_frame = false;
-  int error_count = 0;
-  int first_error_code = 0;
-  size_t skipped_bytes = 0;
-  size_t last_error_offset = 0;
-  int last_error_code = 0;
-  std::string last_error_message;
-};
 
 namespace {
 
@@ -198,6 +179,16 @@ EMSCRIPTEN_KEEPALIVE int m4dw_stream_seek(M4dWebStream* s, uint32_t frame_index)
   s->resynchronising = false;
   s->first_frame = frame_index;
   return M4D_OK;
+}
+
+// Replaces the static layer of s's frames by the static layer of the frame `source` holds (a
+// background from another stream), from the next frame on; source NULL restores the stream's
+// own (m4d_set_background).
+EMSCRIPTEN_KEEPALIVE int m4dw_stream_set_background(M4dWebStream* s, const M4dWebStream* source) {
+  if (s == nullptr) return M4D_ERR_INVALID_ARG;
+  if (source == nullptr) return m4d_set_background(s->context, nullptr);
+  if (!source->holding_frame) return M4D_ERR_INVALID_ARG;
+  return m4d_set_background(s->context, &source->frame.static_layer);
 }
 
 // The reader's decoder, for the public C API (m4d_get_stream_info).

@@ -1,0 +1,31 @@
+// The WebAssembly module's stream reader (m4d_web_stream.cc), shared with its renderer
+// binding (m4d_web_renderer.cc), which draws the frame the reader holds.
+#ifndef M4D_WEB_M4D_WEB_STREAM_H_
+#define M4D_WEB_M4D_WEB_STREAM_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "m4d/m4d.h"
+
+// A stream being read: its bytes, the reading position, its decoder and the frame handed out.
+struct M4dWebStream {
+  M4dContext* context = nullptr;
+  std::vector<uint8_t> bytes;  // everything received, kept for seeking
+  size_t position = 0;         // the next packet (or where a resynchronisation resumes)
+  bool resynchronising = false;
+  bool ended = false;
+  int64_t first_frame = -1;  // frames before it are dropped (after a seek)
+  M4dFrame frame = {};
+  bool holding_frame = false;
+  int error_count = 0;
+  int first_error_code = 0;
+  size_t skipped_bytes = 0;
+  size_t last_error_offset = 0;
+  int last_error_code = 0;
+  std::string last_error_message;
+};
+
+#endif  // M4D_WEB_M4D_WEB_STREAM_H_

@@ -1,0 +1,126 @@
+// Tests of the web player (web/player/) in headless Chromium (Debian's chromium, driven with
+// puppeteer-core over the DevTools protocol), served from 127.0.0.1: a frame it draws
+// against the native renderer's image of the same frame and camera (m4d_play), and a damaged
+// stream. Needs scripts/build.sh (m4d_play) and scripts/build_web.sh; M4D_CHROMIUM names
+// another browser binary.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { createServer } from 'node:http';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+import { serve } from '../tools/serve.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
+let server, browser, base;
+
+before(async () => {
+  server = await serve(root);
+  base = `http://127.0.0.1:${server.address().port}`;
+  // No GPU here: WebGL2 on SwiftShader, Chromium's CPU rasterizer.
+  browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+async function openPlayer(query) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${base}/web/player/?${query}`);
+  await page.waitForFunction(() => window.m4dPlayer && window.m4dPlayer.state.frame, { timeout: 30000 });
+  assert.deepEqual(problems, []);
+  return page;
+}
+
+// PSNR in dB of the page's canvas against a PNG (bytes), decoded by the browser.
+async function psnrAgainstPng(page, png) {
+  return page.evaluate(async (base64) => {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+    const image = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const reference = context.getImageData(0, 0, image.width, image.height).data;
+    const drawn = window.m4dPlayer.readRgb();
+    if (drawn.length !== 3 * image.width * image.height) return -1;
+    let sum = 0;
+    for (let p = 0; p < image.width * image.height; ++p) {
+      for (let c = 0; c < 3; ++c) sum += (drawn[3 * p + c] - reference[4 * p + c]) ** 2;
+    }
+    const mse = sum / drawn.length;
+    return mse === 0 ? Infinity : 10 * Math.log10((255 * 255) / mse);
+  }, png.toString('base64'));
+}
+
+test('draws a frame as the native renderer does (PSNR >= 40 dB)', async (t) => {
+  const stream = 'conformance/streams/enc_adaptive_gop.m4d';
+  const dir = mkdtempSync(join(tmpdir(), 'm4d-player-'));
+  try {
+    // The orbit camera at angle 0, which the page's orbit starts at.
+    execFileSync(join(root, 'build/release/tools/m4d_play'), [
+      join(root, stream), '--orbit', '--orbit-degrees', '0', '--width', '320', '--height', '240',
+      '--frames', '5', '-o', dir]);
+    const page = await openPlayer(`stream=/${stream}&width=320&height=240&autoplay=0`);
+    for (const frame of [4, 0]) {  // an inter frame, then a keyframe (seeking back)
+      assert.equal(await page.evaluate((f) => window.m4dPlayer.showFrame(f), frame), frame);
+      const png = readFileSync(join(dir, `frame_0000${frame}.png`));
+      const psnr = await psnrAgainstPng(page, png);
+      t.diagnostic(`frame ${frame}: ${psnr.toFixed(2)} dB against m4d_play`);
+      assert.ok(psnr >= 40, `frame ${frame}: ${psnr.toFixed(2)} dB against m4d_play`);
+    }
+    // Foreground only draws less than both layers.
+    const both = await page.evaluate(() => window.m4dPlayer.readRgb().reduce((a, b) => a + b, 0));
+    await page.click('#foreground');
+    await page.evaluate(() => window.m4dPlayer.showFrame(0));
+    const foreground = await page.evaluate(() => window.m4dPlayer.readRgb().reduce((a, b) => a + b, 0));
+    assert.ok(foreground < both, `foreground ${foreground} against ${both}`);
+    await page.close();
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('a damaged stream shows an error and resumes at the next GOP', async () => {
+  // entropy_rans_damaged: frame 1's motion grid is damaged; frames 0 and 3-5 decode.
+  const page = await openPlayer('stream=/conformance/invalid/entropy_rans_damaged.m4d&width=160&height=120');
+  await page.waitForFunction(() => window.m4dPlayer.state.lastShown === 5, { timeout: 30000 });
+  const error = await page.$eval('#error', (e) => e.textContent);
+  assert.match(error, /M4D_ERR_BITSTREAM/);
+  assert.match(error, /resumes at the next GOP/);
+  await page.close();
+});
+
+test('streams progressively: playback starts before the last byte arrives', async () => {
+  // A server that sends the first half of the stream, then holds the rest back.
+  const data = readFileSync(join(root, 'conformance/streams/synth_sh3_three_gops.m4d'));
+  let finish;
+  const slow = createServer((request, response) => {
+    response.writeHead(200, { 'Content-Type': 'application/octet-stream', 'Access-Control-Allow-Origin': '*' });
+    response.write(data.subarray(0, data.length >> 1));
+    finish = () => response.end(data.subarray(data.length >> 1));
+  });
+  await new Promise((done) => slow.listen(0, '127.0.0.1', done));
+  const url = `http://127.0.0.1:${slow.address().port}/slow.m4d`;
+  const page = await openPlayer(`stream=${encodeURIComponent(url)}&width=160&height=120`);
+  try {
+    assert.equal(await page.evaluate(() => window.m4dPlayer.state.ended), false);
+    finish();
+    await page.waitForFunction(() => window.m4dPlayer.state.ended && window.m4dPlayer.state.lastShown === 11, { timeout: 30000 });
+    assert.equal(await page.$eval('#error', (e) => e.textContent), '');
+  } finally {
+    await page.close();
+    slow.close();
+  }
+});
