@@ -36,5 +36,6 @@ fi
 # Emscripten's JavaScript optimiser needs Debian's acorn (node-acorn), which a Node.js other
 # than Debian's does not look for.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-emcmake cmake -S web -B "$web/module" -G Ninja -DDRACO_SOURCE_DIR="$draco_src" >/dev/null
+emcmake cmake -S web -B "$web/module" -G Ninja -DDRACO_SOURCE_DIR="$draco_src" 2>&1 >/dev/null |
+  { grep -v '^configure: ' || true; } >&2
 cmake --build "$web/module"

@@ -223,6 +223,8 @@ canvas.onwheel = (e) => {
 window.m4dPlayer = {
   state,
   decoder,
+  // The last draw's splat count and stage times (project, sort, upload, draw in ms).
+  renderStats: () => renderer.stats(),
   // Pauses, shows frame `index` once its bytes have arrived, and resolves after drawing it.
   async showFrame(index) {
     state.playing = false;

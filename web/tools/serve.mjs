@@ -19,10 +19,11 @@ const TYPES = {
 // Serves files under `root`; resolves with the server once it listens (port 0: any free one).
 export function serve(root, port = 0) {
   const base = resolve(root);
+  const prefix = base.endsWith(sep) ? base : base + sep;
   const server = createServer((request, response) => {
     const path = decodeURIComponent(new URL(request.url, 'http://localhost').pathname);
     let file = normalize(join(base, path));
-    if (file !== base && !file.startsWith(base + sep)) {
+    if (file !== base && !file.startsWith(prefix)) {
       response.writeHead(403).end();
       return;
     }
