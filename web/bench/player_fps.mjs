@@ -5,6 +5,7 @@
 // draw; decode: the last frame's; then the draw's stages). --screenshot PNG saves the page.
 //
 //   node web/bench/player_fps.mjs STREAM [--width 1280] [--height 720] [--seconds 10]
+//                                 [--cameras transforms.json --camera N] [--screenshot PNG]
 import { parseArgs } from 'node:util';
 import { fileURLToPath } from 'node:url';
 import { relative, resolve } from 'node:path';
@@ -16,6 +17,7 @@ const { values, positionals } = parseArgs({
   options: {
     width: { type: 'string', default: '1280' }, height: { type: 'string', default: '720' },
     seconds: { type: 'string', default: '10' }, screenshot: { type: 'string' },
+    cameras: { type: 'string' }, camera: { type: 'string' },
   },
 });
 if (positionals.length !== 1) {
@@ -39,7 +41,8 @@ try {
   const stream = `/${relative('/', resolve(positionals[0]))}`;
   const module = `/${relative('/', resolve(root, 'build/web/module'))}/`;
   await page.goto(`${base}/${relative('/', resolve(root, 'web/player'))}/?stream=${stream}&module=${module}` +
-    `&width=${values.width}&height=${values.height}`);
+    `&width=${values.width}&height=${values.height}` +
+    (values.cameras ? `&cameras=/${relative('/', resolve(values.cameras))}&camera=${values.camera || 0}` : ''));
   await page.waitForFunction(() => window.m4dPlayer && window.m4dPlayer.state.frame, { timeout: 60000 });
   await page.evaluate(() => window.m4dPlayer.loaded);
   const count = () => page.evaluate(() => window.m4dPlayer.state.framesShown);

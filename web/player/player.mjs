@@ -4,8 +4,10 @@
 // Query parameters:
 //   stream=URL       the stream (default: the demo's, ../../out/default.m4d)
 //   module=URL       the directory of m4d.mjs (default: ../../build/web/module/)
-//   cameras=URL      capture cameras, a JSON array of { width, height, fx, fy, cx, cy,
+//   cameras=URL      capture cameras: a capture's transforms.json (nerfstudio's format, which
+//                    `m4d scene` writes), or a JSON array of { width, height, fx, fy, cx, cy,
 //                    rotation (9, row-major, world to camera), translation (3) }
+//   camera=N         start with capture camera N (default: the orbit)
 //   background=URL   a stream whose first static layer can replace this one's
 //   width, height    drawing size (default 1280x720); autoplay=0 starts paused
 //
@@ -53,10 +55,38 @@ async function streamInto(dec, url, onChunk) {
   dec.end();
 }
 
+// transforms.json: one camera per distinct "camera" of its frames; camera-to-world in OpenGL
+// axes, turned into world-to-camera in OpenCV axes as the encoder's loader does.
+function camerasOfTransforms(json) {
+  const cameras = [], seen = new Set();
+  for (const f of json.frames || []) {
+    const name = f.camera || f.file_path;
+    if (seen.has(name)) continue;
+    seen.add(name);
+    const m = f.transform_matrix, sign = [1, -1, -1];
+    const rotation = [], translation = [0, 0, 0];
+    for (let r = 0; r < 3; ++r) {
+      for (let c = 0; c < 3; ++c) {
+        rotation.push(sign[r] * m[c][r]);
+        translation[r] -= sign[r] * m[c][r] * m[c][3];
+      }
+    }
+    const get = (key) => f[key] ?? json[key];
+    cameras.push({ name, width: get('w'), height: get('h'), fx: get('fl_x'), fy: get('fl_y'), cx: get('cx'), cy: get('cy'), rotation, translation });
+  }
+  return cameras;
+}
+
 async function loadCameras(url) {
-  const cameras = await (await fetch(url)).json();
+  const json = await (await fetch(url)).json();
+  const cameras = Array.isArray(json) ? json : camerasOfTransforms(json);
   cameras.forEach((c, i) => $('camera').add(new Option(c.name || `capture ${i}`, String(i))));
   state.cameras = cameras;
+  const first = params.get('camera');
+  if (first !== null && cameras[Number(first)]) {
+    state.camera = first;
+    $('camera').value = first;
+  }
 }
 
 async function loadBackground(url) {
@@ -109,14 +139,20 @@ function orbitCamera() {
   return lookAt(eye, centre, up);
 }
 
-// A capture camera scaled to the canvas.
+// A capture camera scaled to the canvas's width and centred, as m4d_play --capture does.
 function captureCamera(c) {
-  const sx = canvas.width / c.width, sy = canvas.height / c.height;
-  return { fx: c.fx * sx, fy: c.fy * sy, cx: c.cx * sx, cy: c.cy * sy, rotation: c.rotation, translation: c.translation, near: 0.05 };
+  const scale = canvas.width / c.width;
+  return {
+    fx: c.fx * scale, fy: c.fy * scale,
+    cx: c.cx * scale + 0.5 * (canvas.width - c.width * scale),
+    cy: c.cy * scale + 0.5 * (canvas.height - c.height * scale),
+    rotation: c.rotation, translation: c.translation, near: c.near ?? 0.2,
+  };
 }
 
 function currentCamera() {
-  return state.camera === 'orbit' ? orbitCamera() : captureCamera(state.cameras[Number(state.camera)]);
+  const capture = state.cameras[Number(state.camera)];
+  return state.camera === 'orbit' || !capture ? orbitCamera() : captureCamera(capture);
 }
 
 // --- decoding and drawing ----------------------------------------------------------------

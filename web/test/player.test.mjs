@@ -5,7 +5,7 @@
 // another browser binary.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { createServer } from 'node:http';
 import { join } from 'node:path';
@@ -88,6 +88,47 @@ test('draws a frame as the native renderer does (PSNR >= 40 dB)', async (t) => {
     assert.ok(foreground < both, `foreground ${foreground} against ${both}`);
     await page.close();
   } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test('draws a capture camera and a replaced background as m4d_play does', async (t) => {
+  const stream = join(root, 'conformance/streams/enc_adaptive_gop.m4d');
+  const background = join(root, 'conformance/streams/enc_sh3.m4d');
+  const dir = mkdtempSync(join(tmpdir(), 'm4d-player-'));
+  const capture = join(dir, 'scene');
+  const files = await serve(dir);
+  try {
+    // The conformance streams' scene (scripts/make_conformance.sh): its transforms.json.
+    execFileSync(join(root, 'build/release/tools/m4d/m4d'), ['scene', '-o', capture, '--cameras', '6',
+      '--width', '64', '--height', '48', '--frames', '6', '--points', '2000']);
+    const play = (out, ...extra) => execFileSync(join(root, 'build/release/tools/m4d_play'), [stream,
+      '--capture', capture, '--camera', '1', '--width', '320', '--height', '240', '--frames', '1',
+      '-o', out, ...extra]);
+    play(dir);
+    const replaced = join(dir, 'replaced');
+    mkdirSync(replaced);
+    play(replaced, '--background-stream', background);
+    const cameras = `http://127.0.0.1:${files.address().port}/scene/transforms.json`;
+    const page = await openPlayer(`stream=/conformance/streams/enc_adaptive_gop.m4d&width=320&height=240` +
+      `&autoplay=0&cameras=${encodeURIComponent(cameras)}&camera=1&background=/conformance/streams/enc_sh3.m4d`);
+    await page.waitForFunction(() => window.m4dPlayer.state.cameras.length === 6 &&
+      !document.getElementById('replace-background').disabled, { timeout: 30000 });
+    await page.evaluate(() => window.m4dPlayer.showFrame(0));
+    const own = await psnrAgainstPng(page, readFileSync(join(dir, 'frame_00000.png')));
+    t.diagnostic(`capture camera 1: ${own.toFixed(2)} dB against m4d_play`);
+    assert.ok(own >= 40, `capture camera: ${own.toFixed(2)} dB`);
+    // The replacement applies from the next frame on: switch it on, then show frame 0 again.
+    await page.click('#replace-background');
+    await page.evaluate(() => window.m4dPlayer.showFrame(0));
+    const swapped = await psnrAgainstPng(page, readFileSync(join(replaced, 'frame_00000.png')));
+    t.diagnostic(`replaced background: ${swapped.toFixed(2)} dB against m4d_play --background-stream`);
+    assert.ok(swapped >= 40, `replaced background: ${swapped.toFixed(2)} dB`);
+    const unchanged = await psnrAgainstPng(page, readFileSync(join(dir, 'frame_00000.png')));
+    assert.ok(unchanged < 30, `the background did not change (${unchanged.toFixed(2)} dB)`);
+    await page.close();
+  } finally {
+    files.close();
     rmSync(dir, { recursive: true, force: true });
   }
 });

@@ -30,7 +30,12 @@ export function serve(root, port = 0) {
     try {
       if (statSync(file).isDirectory()) file = join(file, 'index.html');
       const size = statSync(file).size;
-      response.writeHead(200, { 'Content-Type': TYPES[extname(file)] || 'application/octet-stream', 'Content-Length': size });
+      // Any origin may read (a page on another local port, e.g. a player fetching cameras).
+      response.writeHead(200, {
+        'Content-Type': TYPES[extname(file)] || 'application/octet-stream',
+        'Content-Length': size,
+        'Access-Control-Allow-Origin': '*',
+      });
       createReadStream(file).pipe(response);
     } catch {
       response.writeHead(404).end();
