@@ -59,11 +59,15 @@ export class M4d {
   }
 
   // A decoder; options.layers: 'all' (default), 'static' or 'dynamic' (the other layer's
-  // packets are skipped, never decoded).
+  // packets are skipped, never decoded); options.maxGaussians: the largest Gaussian count
+  // accepted in a layer (default 0: the spec's limit, 2^22), larger ones fail with
+  // M4D_ERR_LIMIT before anything is allocated; set it where memory is short.
   openDecoder(options = {}) {
     const layers = LAYER_BITS[options.layers || 'all'];
     if (layers === undefined) throw new RangeError(`layers must be all, static or dynamic`);
-    const stream = this.wasm._m4dw_stream_open(layers);
+    const maxGaussians = options.maxGaussians ?? 0;
+    if (!Number.isInteger(maxGaussians) || maxGaussians < 0) throw new RangeError('maxGaussians must be a count');
+    const stream = this.wasm._m4dw_stream_open(layers, maxGaussians);
     if (!stream) throw new Error('m4d: cannot open a decoder (out of memory)');
     return new M4dDecoder(this, stream);
   }

@@ -84,14 +84,16 @@ bool SendPacket(M4dWebStream* s, const M4dPacketInfo& info) {
 
 extern "C" {
 
-// Opens a reader whose decoder outputs `layers` (M4D_LAYER_* bits). Returns NULL when out of
-// memory or for bad layers.
-EMSCRIPTEN_KEEPALIVE M4dWebStream* m4dw_stream_open(uint32_t layers) {
+// Opens a reader whose decoder outputs `layers` (M4D_LAYER_* bits) and accepts at most
+// `max_gaussians` Gaussians in a layer (0: the spec's limit; M4dSettings.max_gaussians).
+// Returns NULL when out of memory or for bad layers.
+EMSCRIPTEN_KEEPALIVE M4dWebStream* m4dw_stream_open(uint32_t layers, uint32_t max_gaussians) {
   M4dWebStream* s = new (std::nothrow) M4dWebStream;
   if (s == nullptr) return nullptr;
   M4dSettings settings;
   m4d_default_settings(&settings);
   settings.layers = layers;
+  settings.max_gaussians = max_gaussians;
   if (m4d_open(&s->context, &settings) < 0) {
     delete s;
     return nullptr;

@@ -144,6 +144,25 @@ test('a stream cut inside a packet is reported as truncated once it ends', () =>
   decoder.close();
 });
 
+test('refuses layers above maxGaussians and plays on', () => {
+  const data = read(streams, 'synth_sh3_three_gops.m4d');
+  const counts = [];
+  const probe = m4d.openDecoder();
+  probe.push(data);
+  probe.end();
+  for (let f; (f = probe.nextFrame()); ) counts.push(Math.max(f.static.count, f.dynamic.count));
+  probe.close();
+  const limit = Math.max(...counts) - 1;
+  const decoder = m4d.openDecoder({ maxGaussians: limit });
+  decoder.push(data);
+  decoder.end();
+  while (decoder.nextFrame());
+  assert.ok(decoder.errors.count > 0);
+  assert.equal(decoder.errors.firstCodeName, 'M4D_ERR_LIMIT');
+  decoder.close();
+  assert.throws(() => m4d.openDecoder({ maxGaussians: -1 }), RangeError);
+});
+
 test('reports its version', () => {
   assert.match(m4d.version(), /^0\.7\.\d+$/);
 });
