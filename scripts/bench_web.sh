@@ -11,7 +11,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh m4d_packet_times m4d_synth >/dev/null
 scripts/build_web.sh >/dev/null
-(cd web && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
 work=build/web/bench
 mkdir -p "$work"
 synth=$work/synth_100k_sh3.m4d

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages the project needs to build, test, benchmark and run.
+# Installs the Debian 12 packages the project needs to build, test, benchmark and run, then
+# what the web build needs (Draco's sources, web/'s npm packages).
 # Runs apt-get only when something is missing.
 set -euo pipefail
 
@@ -36,3 +37,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "setup: all ${#packages[@]} Debian packages present"
 fi
+
+# For the WebAssembly build and its tests (web/): Draco's sources from Debian's source
+# package, and the npm packages of web/package-lock.json.
+"$(dirname "$0")/fetch_draco_source.sh"
+(cd "$(dirname "$0")/../web" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
