@@ -32,6 +32,9 @@ SOURCES
   (cd "$apt_dir/download" && apt-get "${apt_opts[@]}" source --download-only \
      "draco=$draco_version" >/dev/null)
   rm -rf "$draco_src.tmp"
-  dpkg-source -x "$apt_dir"/download/draco_*.dsc "$draco_src.tmp" >/dev/null
+  # apt checked the files against the signed index; the .dsc's own signature needs the
+  # Debian developers' keyring, which is not installed.
+  dpkg-source --no-check -x "$apt_dir"/download/draco_*.dsc "$draco_src.tmp" >/dev/null
+  rm -f "$web"/draco_*.orig.tar.*
   mv "$draco_src.tmp" "$draco_src"
 fi
