@@ -163,6 +163,24 @@ test('refuses layers above maxGaussians and plays on', () => {
   assert.throws(() => m4d.openDecoder({ maxGaussians: -1 }), RangeError);
 });
 
+test('every method the TypeScript declarations declare exists', async () => {
+  const api = await import(new URL('m4d.mjs', moduleDir));
+  const declarations = readFileSync(new URL('web/js/m4d.d.mts', root)).toString();
+  let checked = 0;
+  for (const [, name, body] of declarations.matchAll(/export declare class (\w+) \{([^}]*)\}/g)) {
+    for (const [, member] of body.matchAll(/^  (?:readonly )?(\w+)[(:]/gm)) {
+      const descriptor = Object.getOwnPropertyDescriptor(api[name].prototype, member);
+      assert.ok(descriptor, `${name}.${member} is declared but not defined`);
+      ++checked;
+    }
+  }
+  for (const [, name] of declarations.matchAll(/export declare function (\w+)/g)) {
+    assert.equal(typeof api[name], 'function', name);
+    ++checked;
+  }
+  assert.ok(checked > 20, `${checked} members`);
+});
+
 test('reports its version', () => {
   assert.match(m4d.version(), /^0\.7\.\d+$/);
 });
