@@ -133,6 +133,26 @@ test('draws a capture camera and a replaced background as m4d_play does', async 
   }
 });
 
+test('the play button and the seek bar drive playback', async () => {
+  const page = await openPlayer('stream=/conformance/streams/synth_sh3_three_gops.m4d&width=160&height=120&autoplay=0');
+  await page.evaluate(() => window.m4dPlayer.loaded);
+  assert.equal(await page.$eval('#play', (b) => b.textContent), 'Play');
+  assert.equal(await page.$eval('#seek', (e) => e.max), '11');
+  // The seek bar: frame 9 shows, in the third GOP.
+  await page.$eval('#seek', (e) => { e.value = '9'; e.dispatchEvent(new Event('input')); });
+  await page.waitForFunction(() => window.m4dPlayer.state.frame.index === 9, { timeout: 30000 });
+  assert.match(await page.$eval('#frame', (e) => e.textContent), /^frame 9 \/ 11/);
+  // Play: frames advance past 9; pause: they stop.
+  await page.click('#play');
+  await page.waitForFunction(() => window.m4dPlayer.state.frame.index !== 9, { timeout: 30000 });
+  await page.click('#play');
+  assert.equal(await page.$eval('#play', (b) => b.textContent), 'Play');
+  const paused = await page.evaluate(() => window.m4dPlayer.state.frame.index);
+  await new Promise((done) => setTimeout(done, 500));
+  assert.equal(await page.evaluate(() => window.m4dPlayer.state.frame.index), paused);
+  await page.close();
+});
+
 test('a damaged stream shows an error and resumes at the next GOP', async () => {
   // entropy_rans_damaged: frame 1's motion grid is damaged; frames 0 and 3-5 decode.
   const page = await openPlayer('stream=/conformance/invalid/entropy_rans_damaged.m4d&width=160&height=120');
