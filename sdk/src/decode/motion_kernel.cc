@@ -15,6 +15,10 @@
 
 #include "common/spec_limits.h"
 
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
+
 namespace m4d {
 namespace {
 
@@ -64,6 +68,37 @@ Int32x4 LoadChannels(const int16_t* v) {
   if constexpr (N == 3) return Int32x4{v[0], v[1], v[2], 0};
   if constexpr (N == 2) return Int32x4{v[0], v[1], 0, 0};
   return Int32x4{v[0], 0, 0, 0};
+}
+
+// Lane l of features[0..N-1] from the channels of one voxel.
+template <int N>
+void StoreChannels(const Floatx4& channels, int l, Lanes* features) {
+#if defined(__wasm_simd128__)
+  // Clang otherwise turns the extraction of each channel into scalar code all the way back to
+  // the voxel loads; SIMD128 stores a lane directly.
+  wasm_v128_store32_lane(features[0].f + l, v128_t(channels), 0);
+  if constexpr (N > 1) wasm_v128_store32_lane(features[1].f + l, v128_t(channels), 1);
+  if constexpr (N > 2) wasm_v128_store32_lane(features[2].f + l, v128_t(channels), 2);
+  if constexpr (N > 3) wasm_v128_store32_lane(features[3].f + l, v128_t(channels), 3);
+#else
+  for (int c = 0; c < N; ++c) features[c].f[l] = channels[c];
+#endif
+}
+
+// Exact int -> float conversion of grid values (|v| < 2^22).
+Floatx4 ToFloat(const Int32x4& v) {
+#if defined(__wasm_simd128__)
+  // Clang folds the widening into the conversion and then converts lane by lane on
+  // WebAssembly. Adding v to the float 2^23 + 2^22 as integers and subtracting that float
+  // is the same exact conversion, kept as three vector operations.
+  constexpr int32_t kMagicBits = 0x4B400000;  // 12582912.0f
+  Floatx4 biased;
+  const Int32x4 bits = v + kMagicBits;
+  std::memcpy(&biased, &bits, sizeof(biased));
+  return biased - 12582912.0f;
+#else
+  return __builtin_convertvector(v, Floatx4);
+#endif
 }
 
 struct Level {
@@ -123,8 +158,7 @@ void LevelFeatures(const Level& level, const Lanes* corner_weight, const int32_t
       // Corners k and k + 1 (x and x + 1) are adjacent voxels: one load serves both, and
       // the products of the second move down to the accumulator's lanes.
       for (int k = 0; k < 8; k += 2) {
-        const Floatx4 v =
-            __builtin_convertvector(LoadChannels<2 * C>(voxel + level.offset[k]), Floatx4);
+        const Floatx4 v = ToFloat(LoadChannels<2 * C>(voxel + level.offset[k]));
         const Floatx4 first = corner_weight[k].f[l] * v;
         const Floatx4 second = corner_weight[k + 1].f[l] * v;
         acc[0] = acc[0] + first;
@@ -134,13 +168,14 @@ void LevelFeatures(const Level& level, const Lanes* corner_weight, const int32_t
       for (int k = 0; k < 8; ++k) {
         const float w = corner_weight[k].f[l];
         const int16_t* v = voxel + level.offset[k];
-        acc[0] = acc[0] + w * __builtin_convertvector(LoadChannels<C>(v), Floatx4);
+        acc[0] = acc[0] + w * ToFloat(LoadChannels<C>(v));
         if constexpr (C > 4) {
-          acc[1] = acc[1] + w * __builtin_convertvector(LoadChannels<C - 4>(v + 4), Floatx4);
+          acc[1] = acc[1] + w * ToFloat(LoadChannels<C - 4>(v + 4));
         }
       }
     }
-    for (int c = 0; c < C; ++c) features[c].f[l] = acc[c / 4][c % 4] * level.step;
+    StoreChannels<std::min(C, 4)>(acc[0] * level.step, l, features);
+    if constexpr (C > 4) StoreChannels<C - 4>(acc[1] * level.step, l, features + 4);
   }
 }
 
