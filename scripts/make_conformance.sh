@@ -82,6 +82,7 @@ streams=(
   "synth_v04_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 36 --dependent-gops --bitstream-minor 4"
   "synth_v02_sh2|--gops 2 --frames-per-gop 3 --static 600 --dynamic 200 --sh-degree 2 --motion-fraction 0.002 --seed 33 --bitstream-minor 2"
   "synth_max_levels_width|--gops 2 --frames-per-gop 2 --static 300 --dynamic 200 --sh-degree 2 --grid 8,8,16,8,32,8,64,8 --mlp-width 256 --bits 1 --motion-fraction 0.002 --seed 22"
+  "synth_edge_cases|--gops 2 --frames-per-gop 3 --static 200 --dynamic 240 --sh-degree 1 --seed 41 --edge-cases"
 )
 for entry in "${streams[@]}"; do
   name=${entry%%|*}
@@ -91,6 +92,10 @@ for entry in "${streams[@]}"; do
   "$bin/m4d_synth" -o "$out/$name.m4d" $args | tail -5
   record "$name"
 done
+# Valid streams at the edges of the rules, edited from a small written stream: frame numbers
+# that wrap, a non-minimal varuint, a rANS state that starts below L.
+"$bin/m4d_make_invalid" --valid-dir "$out"
+for stream in "$out"/edit_*.m4d; do record "$(basename "$stream" .m4d)"; done
 (cd "$out" && md5sum ./*.m4d >MANIFEST.md5sum)
 echo "wrote $(ls "$out"/*.m4d | wc -l) streams to $out"
 

@@ -1,7 +1,7 @@
 // The invalid conformance streams (conformance/invalid/, written by m4d_make_invalid): read
-// as a player reads a file, each must first report the error its EXPECTED line names, then
-// output exactly the frames of <name>.md5 (what survives: frames before the damage and the
-// GOPs after it).
+// as a player reads a file, each must first report the error its EXPECTED line names (NONE:
+// none at all), then output exactly the frames of <name>.md5 (what survives: frames before the
+// damage and the GOPs after it).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -46,7 +46,7 @@ std::string ErrorName(const PlayResult& r) {
     const auto it = kNames.find(r.errors.front());
     return it == kNames.end() ? std::to_string(r.errors.front()) : it->second;
   }
-  return r.truncated ? "TRUNCATED" : "none";
+  return r.truncated ? "TRUNCATED" : "NONE";
 }
 
 TEST(InvalidStreams, EachReportsItsErrorAndKeepsWhatSurvives) {

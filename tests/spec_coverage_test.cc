@@ -71,6 +71,13 @@ class Reader {
   size_t size_, pos_ = 0;
 };
 
+// Dequantization steps that are powers of two commute with rounding: a decoder that scales
+// before instead of after a sum or product gets the same floats with them, other floats without.
+bool PowerOfTwo(float step) {
+  int exponent;
+  return std::frexp(step, &exponent) == 0.5f;
+}
+
 struct Walk {
   std::set<std::string> features;
   int sh_degree = 0;
@@ -135,7 +142,12 @@ struct Walk {
       if (bits >= 17) Add("bits=17..24");
       if (bits == 24) Add("bits=24");
       Add(per_component ? "per_component=1" : "per_component=0");
-      r->Skip(8u * (per_component ? components[g] : 1));
+      for (int pair = 0; pair < (per_component ? components[g] : 1); ++pair) {
+        const float min = r->F32();
+        r->Skip(4);  // step
+        // 5.4: min + 0 * step turns -0 into +0.
+        if (bits == 0 && min == 0 && std::signbit(min)) Add("bits0_min_negative_zero");
+      }
       if (version_minor >= 6) Codebook(r, g, static_cast<uint32_t>(components[g]));
     }
     if (octree && position_bits > 0) {
@@ -226,10 +238,8 @@ struct Walk {
   }
 
   void Mlp(Reader* r) {
-    for (int j = 0; j <= mlp_layers; ++j) {
-      r->Skip(4);
-      SymbolBlock(r);
-      r->Skip(4);
+    for (int tensor = 0; tensor < 2 * (mlp_layers + 1); ++tensor) {  // weights, biases
+      if (!PowerOfTwo(r->F32())) Add("mlp_step_not_power_of_two");
       SymbolBlock(r);
     }
   }
@@ -238,11 +248,14 @@ struct Walk {
     r->Skip(24);
     bool any = false;
     for (int l = 0; l < levels; ++l) {
-      r->Skip(4);
+      const float step = r->F32();
       const auto flags = SymbolBlock(r);
       if (flags.first > 1) Add("bricks_mixed");
       if (flags.first == 1 && flags.second == 1) Add("bricks_all_one");
-      any = any || flags.first > 1 || flags.second == 1;
+      const bool coded = flags.first > 1 || flags.second == 1;
+      // 6.3 step 2 scales after the interpolation; only a level with values shows it.
+      if (coded && !PowerOfTwo(step)) Add("grid_step_not_power_of_two");
+      any = any || coded;
       SymbolBlock(r);
     }
     if (!any) Add("grid_all_zero");
@@ -250,8 +263,7 @@ struct Walk {
 
   void Appearance(Reader* r) {
     Add("appearance");
-    const float step = r->F32();
-    if (step != std::exp2(std::round(std::log2(step)))) Add("appearance_step_not_power_of_two");
+    if (!PowerOfTwo(r->F32())) Add("appearance_step_not_power_of_two");
     SymbolBlock(r, 3 * dynamic_count);
   }
 

@@ -197,8 +197,8 @@ inline DecodeResult DecodeWith(const M4dSettings& settings, const std::vector<Pa
 struct PlayResult {
   std::vector<std::pair<uint32_t, std::string>> frames;  // (frame_index, hash) in output order
   std::vector<int> errors;                               // header and send errors, in order
-  bool truncated = false;                                // the data ends inside a packet
-  size_t steps = 0;                                      // loop iterations (each moves forward)
+  bool truncated = false;  // the data ends inside a packet or a frame (spec 9, TRUNCATED)
+  size_t steps = 0;        // loop iterations (each moves forward)
 };
 
 inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8_t>& bytes) {
@@ -219,12 +219,14 @@ inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8
     return r == M4D_OK || info.packet_size > 0 ? from + offset : bytes.size();
   };
   size_t pos = 0;
+  bool inside_frame = false;  // the last header read has no end_of_frame
   while (pos < bytes.size()) {
     ++out.steps;
     M4dPacketInfo info;
     const int parsed = m4d_parse_packet_header(&bytes[pos], bytes.size() - pos, &info);
     if (parsed == M4D_ERR_AGAIN) {
       out.truncated = true;
+      inside_frame = false;
       break;
     }
     if (parsed < 0) {
@@ -233,6 +235,7 @@ inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8
       pos = resync(pos + 1);
       continue;
     }
+    inside_frame = !info.end_of_frame;
     int r = m4d_send_packet(ctx, &bytes[pos], info.packet_size);
     if (r == M4D_ERR_AGAIN) {
       drain();
@@ -246,6 +249,7 @@ inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8
     }
     pos += info.packet_size;
   }
+  out.truncated = out.truncated || inside_frame;
   m4d_close(&ctx);
   return out;
 }

@@ -46,10 +46,49 @@ size_t Resync(const std::vector<uint8_t>& data, size_t from, size_t* skipped) {
   return next;
 }
 
-void ReportError(size_t offset, int code, const char* detail) {
-  std::fprintf(stderr, "m4d_decode: byte %zu: error %d (%s): %s\n", offset, code,
-               m4d_error_string(code), detail);
+// The names of bitstream-spec 9, for the conformance contract's first_error line.
+const char* ErrorName(int code) {
+  switch (code) {
+    case M4D_ERR_INVALID_ARG:
+      return "M4D_ERR_INVALID_ARG";
+    case M4D_ERR_NOMEM:
+      return "M4D_ERR_NOMEM";
+    case M4D_ERR_BITSTREAM:
+      return "M4D_ERR_BITSTREAM";
+    case M4D_ERR_CHECKSUM:
+      return "M4D_ERR_CHECKSUM";
+    case M4D_ERR_UNSUPPORTED:
+      return "M4D_ERR_UNSUPPORTED";
+    case M4D_ERR_LIMIT:
+      return "M4D_ERR_LIMIT";
+    default:
+      return "UNKNOWN";
+  }
 }
+
+// Reports an error with its byte offset; the first one also as the conformance contract's
+// line "first_error NAME" (conformance/README.md).
+class ErrorReport {
+ public:
+  void Error(size_t offset, int code, const char* detail) {
+    std::fprintf(stderr, "m4d_decode: byte %zu: error %d (%s): %s\n", offset, code,
+                 m4d_error_string(code), detail);
+    First(ErrorName(code));
+  }
+  // The stream ends inside a packet or a frame (spec 9, TRUNCATED).
+  void Truncated(size_t offset, const char* where) {
+    std::fprintf(stderr, "m4d_decode: byte %zu: truncated: the stream ends inside a %s\n", offset,
+                 where);
+    First("TRUNCATED");
+  }
+  int count() const { return count_; }
+
+ private:
+  void First(const char* name) {
+    if (count_++ == 0) std::fprintf(stderr, "first_error %s\n", name);
+  }
+  int count_ = 0;
+};
 
 }  // namespace
 
@@ -99,7 +138,9 @@ int main(int argc, char** argv) {
   M4dContext* ctx = nullptr;
   if (m4d_open(&ctx, &settings) < 0) return 2;
 
-  int errors = 0, frames = 0, gop = -1;
+  ErrorReport errors;
+  int frames = 0, gop = -1;
+  bool inside_frame = false;  // the last packet header read has no end_of_frame
   size_t pos = 0, skipped = 0;
   if (opt.start_frame >= 0) {
     uint32_t first = 0;
@@ -138,18 +179,17 @@ int main(int argc, char** argv) {
   while (pos < data.size()) {
     int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
     if (r == M4D_ERR_AGAIN) {
-      std::fprintf(stderr, "m4d_decode: byte %zu: truncated: the stream ends inside a packet\n",
-                   pos);
-      ++errors;
+      errors.Truncated(pos, "packet");
+      inside_frame = false;
       break;
     }
     if (r < 0) {
-      ReportError(pos, r, "damaged packet header; resynchronising");
-      ++errors;
+      errors.Error(pos, r, "damaged packet header; resynchronising");
       m4d_flush(ctx);
       pos = Resync(data, pos + 1, &skipped);
       continue;
     }
+    inside_frame = !info.end_of_frame;
     if (info.type == M4D_PACKET_SEQUENCE_HEADER) ++gop;
     if (gop >= opt.start_gop || opt.start_frame >= 0) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -162,14 +202,14 @@ int main(int argc, char** argv) {
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       drain();
       if (r < 0) {
-        ReportError(pos, r, m4d_last_error(ctx));
-        ++errors;
+        errors.Error(pos, r, m4d_last_error(ctx));
         pos = Resync(data, pos + 24, &skipped);
         continue;
       }
     }
     pos += info.packet_size;
   }
+  if (inside_frame) errors.Truncated(data.size(), "frame (its last packet is missing)");
   M4dStreamInfo stream;
   const bool configured = m4d_get_stream_info(ctx, &stream) == M4D_OK;
   m4d_close(&ctx);
@@ -183,7 +223,7 @@ int main(int argc, char** argv) {
   if (frames == 0) std::fprintf(stderr, "m4d_decode: no frame decoded\n");
   if (!opt.quiet) {
     std::fprintf(stderr, "m4d_decode: %d frames, %d packet errors, %zu bytes skipped, %.1f ms\n",
-                 frames, errors, skipped, decode_ms);
+                 frames, errors.count(), skipped, decode_ms);
     if (configured) {
       std::fprintf(stderr,
                    "m4d_decode: bitstream %u.%u, %u/%u fps, SH degree %u, %u GOPs (%u random "
@@ -192,5 +232,5 @@ int main(int argc, char** argv) {
                    stream.sh_degree, stream.gops, stream.random_access_gops, stream.num_frames);
     }
   }
-  return (errors > 0 || skipped > 0 || frames == 0) ? 1 : 0;
+  return (errors.count() > 0 || skipped > 0 || frames == 0) ? 1 : 0;
 }

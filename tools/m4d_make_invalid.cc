@@ -4,7 +4,10 @@
 // counts, oversized declarations, damaged Draco and entropy payloads. Edits that must reach a
 // payload parser recompute the CRCs. Writes DIR/<name>.m4d and DIR/EXPECTED, one line per
 // stream: "<name> <error> <what is wrong>", where <error> is the M4D_ERR_* code a decoder must
-// report first, or TRUNCATED when the stream ends inside a packet.
+// report first, TRUNCATED when the stream ends inside a packet or a frame, or NONE where a
+// decoder passes the rule broken without error (a stream joined inside a GOP). With
+// --valid-dir it writes instead the valid streams at the edges of the rules (edit_*: frame
+// numbers that wrap, a non-minimal varuint, a rANS state that starts below L).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstring>
@@ -84,6 +87,11 @@ void FixCrcs(Packet* p) {
   for (int i = 0; i < 4; ++i) (*p)[20 + i] = static_cast<uint8_t>(header_crc >> (8 * i));
 }
 
+uint32_t ByteReaderU32(const Packet& p, size_t at) {
+  return uint32_t(p[at]) | uint32_t(p[at + 1]) << 8 | uint32_t(p[at + 2]) << 16 |
+         uint32_t(p[at + 3]) << 24;
+}
+
 std::vector<uint8_t> Varuint(uint32_t v) {
   std::vector<uint8_t> out;
   do {
@@ -136,6 +144,43 @@ size_t OctreeFlagOffset(const Packet& p) {
   size_t i = Find(p, "DRACO") - 1;  // draco_size's last byte
   while (p[i - 1] & 0x80) --i;
   return i - 1;
+}
+
+// Payload offset of what follows the symbol_block at payload offset `at` (spec 5.1).
+size_t SkipSymbolBlock(const Packet& p, size_t at) {
+  const uint32_t n = ReadVaruint(p, 24 + at);
+  at += VaruintLength(p, 24 + at);
+  at += VaruintLength(p, 24 + at);  // min_value
+  if (n == 1) return at;
+  for (uint32_t i = 0; i < n;) {
+    const uint32_t f = ReadVaruint(p, 24 + at);
+    at += VaruintLength(p, 24 + at);
+    ++i;
+    if (f == 0) {
+      i += ReadVaruint(p, 24 + at);
+      at += VaruintLength(p, 24 + at);
+    }
+  }
+  const uint32_t payload_size = ReadVaruint(p, 24 + at);
+  return at + VaruintLength(p, 24 + at) + payload_size;
+}
+
+// Payload offsets in a MOTION_GRID (spec 4.4) of level 0's brick_flags and values blocks. The
+// base stream's level 0 is one brick of 8^3 voxels, flagged.
+constexpr size_t kBrickFlagsOffset = 28;  // after box_min, box_scale and level 0's step
+size_t GridValuesOffset(const Packet& p) { return SkipSymbolBlock(p, kBrickFlagsOffset); }
+
+void SetU32(Packet* p, size_t at, uint32_t value) {
+  for (int i = 0; i < 4; ++i) (*p)[at + i] = static_cast<uint8_t>(value >> (8 * i));
+}
+
+// Every frame_index from packet `first` on moved by `delta` (mod 2^32), CRCs fixed.
+void ShiftFrameIndices(Stream* s, size_t first, uint32_t delta) {
+  for (size_t i = first; i < s->size(); ++i) {
+    Packet& p = (*s)[i];
+    SetU32(&p, 8, ByteReaderU32(p, 8) + delta);
+    FixCrcs(&p);
+  }
 }
 
 // An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
@@ -352,6 +397,73 @@ std::vector<Case> Cases() {
          p.back() ^= 0x5a;
          FixCrcs(&p);
        }},
+      // Stream structure (spec 9's structural cases).
+      {"sequence_header_inside_frame", "M4D_ERR_BITSTREAM",
+       "GOP 1's SEQUENCE_HEADER inside frame 2 (its COMPENSATION removed): frame 2 is dropped, "
+       "GOP 1 decodes",
+       [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kComp + 2); }},
+      {"stream_ends_inside_frame", "TRUNCATED",
+       "the stream ends after frame 5's MOTION_GRID (its COMPENSATION missing)",
+       [](Stream* s, std::vector<uint8_t>*) { s->pop_back(); }},
+      {"starts_inside_gop", "NONE",
+       "frame 1's MOTION_GRID and COMPENSATION before the first SEQUENCE_HEADER: skipped, no "
+       "error",
+       [](Stream* s, std::vector<uint8_t>*) {
+         const Packet motion = (*s)[kMotion], compensation = (*s)[kComp];
+         s->insert(s->begin(), {motion, compensation});
+       }},
+      // Fields out of their range (spec 9's BITSTREAM rows).
+      {"frame_rate_zero", "M4D_ERR_BITSTREAM", "fps_num 0",
+       [](Stream* s, std::vector<uint8_t>*) {
+         SetU32(&(*s)[kSeq], 24 + 4, 0);
+         FixCrcs(&(*s)[kSeq]);
+       }},
+      {"bits_above_24", "M4D_ERR_BITSTREAM", "a set's position bits 25",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         p[24 + VaruintLength(p, 24)] = 25;
+         FixCrcs(&p);
+       }},
+      {"per_component_not_binary", "M4D_ERR_BITSTREAM", "a set's position per_component 2",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         p[24 + VaruintLength(p, 24) + 1] = 2;
+         FixCrcs(&p);
+       }},
+      {"mlp_step_not_finite", "M4D_ERR_BITSTREAM", "layer 0's weight_step a NaN",
+       [](Stream* s, std::vector<uint8_t>*) {
+         SetU32(&(*s)[kMlp], 24, 0x7fc00000u);
+         FixCrcs(&(*s)[kMlp]);
+       }},
+      {"box_scale_zero", "M4D_ERR_BITSTREAM", "a MOTION_GRID's box_scale x 0",
+       [](Stream* s, std::vector<uint8_t>*) {
+         SetU32(&(*s)[kMotion], 24 + 12, 0);
+         FixCrcs(&(*s)[kMotion]);
+       }},
+      {"brick_flag_not_binary", "M4D_ERR_BITSTREAM", "level 0's brick flag 2",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         SetVaruint(&p, kBrickFlagsOffset + 1, 4);  // min_value 2 (zigzag): flags 2..
+       }},
+      {"grid_value_outside_int16", "M4D_ERR_BITSTREAM",
+       "level 0's values from -40000 (below -32768)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         const size_t at = GridValuesOffset(p);
+         SetVaruint(&p, at + VaruintLength(p, 24 + at), 79999);  // min_value -40000 (zigzag)
+       }},
+      {"alphabet_for_zero_values", "M4D_ERR_BITSTREAM",
+       "level 0's brick flag 0 (no values) but its values block an alphabet of several symbols",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         SetVaruint(&p, kBrickFlagsOffset + 1, 0);  // min_value 0: the one brick not coded
+       }},
+      {"draco_version_not_2_3", "M4D_ERR_BITSTREAM", "the Draco header's minor version 2",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kStatic];
+         p[Find(p, "DRACO") + 6] = 2;
+         FixCrcs(&p);
+       }},
       {"removed_count_inconsistent", "M4D_ERR_BITSTREAM",
        "num_removed one more than the removal flags set",
        [](Stream* s, std::vector<uint8_t>*) {
@@ -360,15 +472,68 @@ std::vector<Case> Cases() {
   };
 }
 
+// Valid streams at the edges of the rules, edited from the same base (written with
+// --valid-dir into the conformance streams): they decode without error.
+std::vector<Case> ValidEdits() {
+  return {
+      {"edit_frame_index_wraps", "", "frames numbered 2^32 - 2, 2^32 - 1, 0, 1, 2, 3: valid",
+       [](Stream* s, std::vector<uint8_t>*) { ShiftFrameIndices(s, 0, 0xfffffffeu); }},
+      {"edit_varuint_not_minimal", "",
+       "a dynamic set's count (80) coded in 3 bytes instead of 1: the same value",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         const uint32_t count = ReadVaruint(p, 24);
+         p.erase(p.begin() + 24, p.begin() + 24 + VaruintLength(p, 24));
+         const uint8_t padded[3] = {static_cast<uint8_t>(0x80 | (count & 0x7f)),
+                                    static_cast<uint8_t>(0x80 | (count >> 7)), 0};
+         p.insert(p.begin() + 24, padded, padded + 3);
+         FixCrcs(&p);
+       }},
+      {"edit_rans_initial_state_low", "",
+       "level 0's brick flags (one 1) recoded with rANS from the initial state 2^15, below "
+       "L_RANS: legal, the same frames",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         const size_t at = 24 + kBrickFlagsOffset, end = 24 + SkipSymbolBlock(p, kBrickFlagsOffset);
+         // alphabet 2, min 0, frequencies {0 (then a run of 0 zeros), 32768}, a 5-byte payload:
+         // symbol 1 keeps the state at 2^15, whose renormalisation reads one byte to reach L.
+         const uint8_t block[] = {2, 0, 0, 0, 0x80, 0x80, 0x02, 5, 0x00, 0x80, 0x00, 0x00, 0x00};
+         p.erase(p.begin() + at, p.begin() + end);
+         p.insert(p.begin() + at, block, block + sizeof(block));
+         FixCrcs(&p);
+       }},
+  };
+}
+
+bool WriteStream(const std::string& path, const Stream& stream, const std::vector<uint8_t>& tail) {
+  std::ofstream file(path, std::ios::binary);
+  for (const Packet& p : stream) file.write(reinterpret_cast<const char*>(p.data()), p.size());
+  file.write(reinterpret_cast<const char*>(tail.data()), tail.size());
+  return static_cast<bool>(file);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string dir = "conformance/invalid";
   CLI::App app{"Write the invalid conformance streams and their expected errors."};
+  std::string valid_dir;
   app.add_option("-o,--output-dir", dir, "where to write them")->capture_default_str();
+  app.add_option("--valid-dir", valid_dir,
+                 "write the valid edge-case streams (edit_*) there instead");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
   Stream base, base_v03;
   if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base) || !MakeBase(3, &base_v03)) return 1;
+  if (!valid_dir.empty()) {
+    for (const Case& c : ValidEdits()) {
+      Stream stream = base;
+      std::vector<uint8_t> tail;
+      c.edit(&stream, &tail);
+      if (!WriteStream(valid_dir + "/" + c.name + ".m4d", stream, tail)) return 1;
+      std::printf("%s: %s\n", c.name, c.what);
+    }
+    return 0;
+  }
   std::ofstream expected(dir + "/EXPECTED");
   if (!expected) {
     std::fprintf(stderr, "m4d_make_invalid: cannot write %s/EXPECTED\n", dir.c_str());
@@ -380,10 +545,7 @@ int main(int argc, char** argv) {
     Stream stream = c.base_minor == 3 ? base_v03 : base;
     std::vector<uint8_t> tail;
     c.edit(&stream, &tail);
-    std::ofstream file(dir + "/" + c.name + ".m4d", std::ios::binary);
-    for (const Packet& p : stream) file.write(reinterpret_cast<const char*>(p.data()), p.size());
-    file.write(reinterpret_cast<const char*>(tail.data()), tail.size());
-    if (!file) return 1;
+    if (!WriteStream(dir + "/" + c.name + ".m4d", stream, tail)) return 1;
     expected << c.name << " " << c.error << " " << c.what << "\n";
     ++written;
   }

@@ -1,7 +1,7 @@
 // m4d_synth: writes a synthetic M4D stream (random Gaussian sets, sparse smooth motion grids,
-// compensation every frame) with the reference stream writer, decodes the file back with the
-// public C API, and checks frame by frame that the decoder reproduces the writer's
-// closed-loop reconstruction. Prints per-frame and per-layer sizes.
+// compensation every frame; or the decoding edge cases of --edge-cases) with the reference stream
+// writer, decodes the file back with the public C API, and checks frame by frame that the decoder
+// reproduces the writer's closed-loop reconstruction. Prints per-frame and per-layer sizes.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -16,6 +16,7 @@
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
+#include "stream/synthetic_edge_cases.h"
 #include "usage_exit.h"
 
 namespace {
@@ -41,6 +42,9 @@ struct Options {
   // Inter frames after the first of a GOP change the colour of this share of the dynamic
   // Gaussians with an APPEARANCE (bitstream 0.3; 0: none).
   float appearance_fraction = 0.0f;
+  // The edge-case content of synthetic_edge_cases.h instead of random dynamic sets, MLPs and
+  // motion (its own grid and MLP configuration).
+  bool edge_cases = false;
 };
 
 // Colour changes of a share of the set (APPEARANCE values): small signed steps, zero elsewhere.
@@ -110,6 +114,10 @@ bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
   }
   wo->sequence.mlp.hidden_layers = opt.mlp_layers;
   wo->sequence.mlp.hidden_width = opt.mlp_width;
+  if (opt.edge_cases) {
+    wo->sequence.grid = m4d::EdgeCaseGridConfig();
+    wo->sequence.mlp = m4d::EdgeCaseMlpConfig();
+  }
   if (opt.bits > 0) {
     m4d::GaussianQuantization q;
     q.position_bits = q.log_scale_bits = q.rotation_bits = opt.bits;
@@ -128,6 +136,20 @@ bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
   return true;
 }
 
+// A set of dynamic Gaussians: a keyframe's or a compensation's.
+m4d::GaussianSet DynamicSet(const Options& opt, size_t n, uint64_t seed) {
+  const float fg_center[3] = {0.2f, 0.1f, 0};
+  return opt.edge_cases ? m4d::EdgeCaseGaussianSet(n, opt.sh_degree, seed)
+                        : m4d::SyntheticGaussianSet(n, opt.sh_degree, seed, fg_center, 0.5f);
+}
+
+// The motion of an inter frame; `dynamic_set` is the set it moves.
+m4d::FloatMotionGrid Motion(const Options& opt, const m4d::GridConfig& config, uint64_t seed,
+                            const m4d::GaussianSet& dynamic_set) {
+  return opt.edge_cases ? m4d::EdgeCaseMotionGrid(seed, dynamic_set)
+                        : m4d::SyntheticMotionGrid(config, seed, -1.0f, 1.0f, opt.motion_fraction);
+}
+
 // Writes the stream and returns the writer's reconstructed hash for each frame.
 bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
                  std::vector<std::string>* hashes) {
@@ -135,15 +157,16 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
   StreamWriterOptions wo;
   if (!StreamOptions(opt, &wo)) return false;
   StreamWriter writer(wo);
-  const float center[3] = {0, 0, 0}, fg_center[3] = {0.2f, 0.1f, 0};
+  const float center[3] = {0, 0, 0};
   std::printf("%6s %4s %12s %12s %10s %10s %12s %10s\n", "frame", "type", "static B", "dynamic B",
               "mlp B", "motion B", "appearance B", "comp B");
   for (int g = 0; g < opt.gops; ++g) {
     const uint64_t seed = opt.seed * 1000 + g;
     GaussianSet bg = SyntheticGaussianSet(opt.static_count, opt.sh_degree, seed, center, 3.0f);
-    GaussianSet fg =
-        SyntheticGaussianSet(opt.dynamic_count, opt.sh_degree, seed + 7, fg_center, 0.5f);
-    MlpWeights mlp = SyntheticMlp(wo.sequence.grid.feature_count(), wo.sequence.mlp, seed);
+    GaussianSet fg = DynamicSet(opt, opt.dynamic_count, seed + 7);
+    MlpWeights mlp = opt.edge_cases
+                         ? EdgeCaseMlp()
+                         : SyntheticMlp(wo.sequence.grid.feature_count(), wo.sequence.mlp, seed);
     DecodedFrame recon;
     for (int f = 0; f < opt.frames_per_gop; ++f) {
       Status status;
@@ -155,7 +178,7 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
         status = writer.WriteKeyframe(bg, fg, mlp, &recon);
       } else {
         status = writer.WriteMotion(
-            SyntheticMotionGrid(wo.sequence.grid, seed * 31 + f, -1.0f, 1.0f, opt.motion_fraction));
+            Motion(opt, wo.sequence.grid, seed * 31 + f, writer.moved_dynamic_set()));
         if (status.ok() && opt.appearance_fraction > 0.0f && f > 1) {
           status =
               writer.WriteAppearance(kSyntheticAppearanceStep,
@@ -167,8 +190,7 @@ bool WriteStream(const Options& opt, std::vector<uint8_t>* bytes,
           const size_t n = writer.moved_dynamic_set().size();
           std::vector<uint8_t> removed(n, 0);
           for (size_t i = f; i < n; i += 100) removed[i] = 1;
-          GaussianSet added =
-              SyntheticGaussianSet(n / 100, opt.sh_degree, seed * 77 + f, fg_center, 0.5f);
+          GaussianSet added = DynamicSet(opt, n / 100, seed * 77 + f);
           status = writer.WriteCompensation(removed, added, &recon);
         }
       }
@@ -266,6 +288,10 @@ int main(int argc, char** argv) {
                  "share of the dynamic Gaussians whose colour an APPEARANCE changes in each inter "
                  "frame but a GOP's first (0: none; bitstream 0.3)")
       ->check(CLI::Range(0.0f, 1.0f));
+  app.add_flag("--edge-cases", opt.edge_cases,
+               "dynamic sets, MLPs and motion made of the decoding edge cases of spec 5.4 and "
+               "6.3 (its own grid and MLP; --motion-fraction has no effect)")
+      ->excludes("--grid", "--mlp-layers", "--mlp-width");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
 
   std::vector<uint8_t> bytes;

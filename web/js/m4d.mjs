@@ -28,7 +28,7 @@ const ERROR_NAMES = {
 export function errorCodeName(code) {
   return code === 0 ? '' : ERROR_NAMES[code] || `error ${code}`;
 }
-const TRUNCATED = -100;  // m4dw_stream_last_error_code: the stream ends inside a packet
+const TRUNCATED = -100;  // m4dw_stream_last_error_code: the stream ends inside a packet or a frame
 
 // Loads the module. options.wasmBinary (bytes of m4d_wasm.wasm) skips fetching it; Node.js
 // reads it from beside this file.
@@ -198,7 +198,7 @@ export class M4dDecoder {
 
   // Damage met so far: how many errors, the first one's code, the last one's byte offset,
   // code and message. Codes are M4D_ERR_* values (names: M4D_ERR_BITSTREAM...), or -100,
-  // named TRUNCATED, when the stream ends inside a packet.
+  // named TRUNCATED, when the stream ends inside a packet or a frame (spec 9).
   get errors() {
     const s = this.live();
     const code = this.wasm._m4dw_stream_last_error_code(s);
@@ -250,7 +250,7 @@ export class M4dFrame {
   constructor(decoder) {
     const wasm = decoder.wasm, s = decoder.stream;
     this.decoder = decoder;
-    this.frameIndex = wasm._m4dw_frame_index(s);
+    this.frameIndex = wasm._m4dw_frame_index(s) >>> 0;  // u32: frame numbers wrap at 2^32
     this.isKeyframe = wasm._m4dw_frame_is_keyframe(s) !== 0;
     this.layers = wasm._m4dw_frame_layers(s);
     this.static = layerView(wasm, wasm._m4dw_frame_layer(s, 1));

@@ -149,6 +149,7 @@ EMSCRIPTEN_KEEPALIVE int m4dw_stream_next_frame(M4dWebStream* s) {
       if (!s->ended) return 0;
       RecordError(s, s->position, kTruncated, "the stream ends inside a packet");
       s->position = s->bytes.size();
+      s->inside_frame = false;
       return 0;
     }
     if (r < 0) {
@@ -158,7 +159,12 @@ EMSCRIPTEN_KEEPALIVE int m4dw_stream_next_frame(M4dWebStream* s) {
       s->resynchronising = true;
       continue;
     }
+    s->inside_frame = info.end_of_frame == 0;
     if (SendPacket(s, info)) return 1;
+  }
+  if (s->ended && s->inside_frame) {
+    RecordError(s, s->position, kTruncated, "the stream ends inside a frame");
+    s->inside_frame = false;
   }
   return 0;
 }

@@ -17,7 +17,8 @@ struct M4dWebStream {
   size_t position = 0;         // the next packet (or where a resynchronisation resumes)
   bool resynchronising = false;
   bool ended = false;
-  int64_t first_frame = -1;  // frames before it are dropped (after a seek)
+  bool inside_frame = false;  // the last packet header read has no end_of_frame
+  int64_t first_frame = -1;   // frames before it are dropped (after a seek)
   M4dFrame frame = {};
   bool holding_frame = false;
   int error_count = 0;

@@ -152,7 +152,7 @@ test('every invalid stream gives its frames and its first error, without throwin
     const base = name.slice(0, -4);
     const { lines, decoder } = decodeAll(read(invalid, name), { chunk: 1000 });
     assert.deepEqual(lines, expectedLines(invalid, `${base}.md5`), base);
-    assert.equal(decoder.errors.firstCodeName, want.get(base), base);
+    assert.equal(decoder.errors.count ? decoder.errors.firstCodeName : 'NONE', want.get(base), base);
     decoder.close();
   }
 });

@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // m4d_decode.mjs: the conformance runner's command-line contract (conformance/README.md) for
 // the WebAssembly decoder under Node.js. Prints "<frame_index> <md5>" per decoded frame and
-// exits 0 for a valid stream, 1 when the stream was damaged (errors on stderr), 2 on misuse.
+// exits 0 for a valid stream, 1 when the stream was damaged (errors on stderr, the first also
+// as "first_error NAME"), 2 on misuse.
 //
 //   node web/tools/m4d_decode.mjs [--layers all|static|dynamic] [--chunk BYTES] STREAM
 //
@@ -44,8 +45,10 @@ const m4d = await loadM4d();
 const decoder = m4d.openDecoder({ layers: args.values.layers });
 const lines = [];
 let reported = 0;
+// The contract's line for the first error: "first_error NAME" (conformance/README.md).
 const report = () => {
   const e = decoder.errors;
+  if (e.count > 0 && reported === 0) console.error(`first_error ${e.firstCodeName}`);
   if (e.count > reported) {
     console.error(`m4d_decode.mjs: byte ${e.lastOffset}: error ${e.lastCode} (${e.lastCodeName}): ${e.lastMessage}`);
     reported = e.count;

@@ -249,7 +249,9 @@ M4D_API int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t fr
  *                     again (it was not consumed);
  *   negative          the packet was rejected (see m4d_error_string and the logger). The
  *                     decoder then skips packets until the next SEQUENCE_HEADER, so a caller
- *                     may simply continue sending. */
+ *                     may simply continue sending. One exception: a SEQUENCE_HEADER that
+ *                     arrives inside a frame gives M4D_ERR_BITSTREAM for the frame it cuts
+ *                     (which is dropped) but is itself consumed, so decoding goes on. */
 M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 
 /* m4d_send_packet with props that come back in M4dFrame.props of the frame this packet

@@ -90,8 +90,20 @@ Status Decoder::SendPacket(const uint8_t* data, size_t size) {
     status = BitstreamError("packet of " + std::to_string(size) + " bytes declares a payload of " +
                             std::to_string(header.payload_size) + " bytes");
   }
+  // A SEQUENCE_HEADER inside a frame (spec 9): the incomplete frame is dropped and reported,
+  // and the header still starts the next GOP, so decoding goes on without a packet lost.
+  const bool cuts_frame = status.ok() && header.type == M4D_PACKET_SEQUENCE_HEADER &&
+                          stage_ != Stage::kNeedSequenceHeader && stage_ != Stage::kInter;
+  const uint32_t cut_frame = frame_index_;
   if (status.ok()) status = Dispatch(header, data + kPacketHeaderSize);
-  if (!status.ok()) Reset();
+  if (!status.ok()) {
+    Reset();
+    return status;
+  }
+  if (cuts_frame) {
+    return BitstreamError("SEQUENCE_HEADER inside frame " + std::to_string(cut_frame) +
+                          ": that frame is dropped, decoding goes on from this header");
+  }
   return status;
 }
 
