@@ -199,6 +199,25 @@ TEST_F(MalformedStream, DecoderLimitsFromSettings) {
   EXPECT_TRUE(r.hashes.empty());
 }
 
+// Spec 9, E33: a compensation that grows the dynamic set above the limit (here the decoder's:
+// the spec's needs 2^22 Gaussians in memory).
+TEST(MalformedStreamLimits, CompensationAboveTheLimit) {
+  TestStreamShape shape;
+  shape.gops = 1;
+  shape.frames_per_gop = 2;
+  shape.static_count = 50;
+  shape.dynamic_count = 100;  // frame 1 removes 3 and adds 21
+  const TestStream stream = MakeTestStream(shape);
+  M4dSettings s = DefaultSettings();
+  s.max_gaussians = 100;
+  const DecodeResult r = DecodeWith(s, stream.packets);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors.front(), M4D_ERR_LIMIT);
+  EXPECT_EQ(r.hashes.size(), 1u);  // the keyframe
+  s.max_gaussians = 118;
+  EXPECT_TRUE(DecodeWith(s, stream.packets).errors.empty());
+}
+
 TEST_F(MalformedStream, DecodingResumesAtTheNextGopAfterAnError) {
   std::vector<Packet> packets = stream_->packets;
   packets[4][40] ^= 0xff;  // damage frame 1's MOTION_GRID payload (CRC now wrong)

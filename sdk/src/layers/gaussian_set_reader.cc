@@ -94,6 +94,18 @@ Status SkipDracoFrequencyTable(ByteReader* r, uint32_t num_symbols) {
   return Status::Ok();
 }
 
+// Skips the payload of a Draco rANS coder (spec 5.5: draco_rans). Its last byte's top two
+// bits k say how many bytes before it hold the initial state: Draco reads them unchecked.
+Status SkipDracoRansPayload(ByteReader* r) {
+  uint32_t num_bytes;
+  const uint8_t* bytes;
+  if (!r->ReadVarUint(&num_bytes) || !r->ReadBytes(num_bytes, &bytes)) return DracoTruncated();
+  if (num_bytes < 1 || num_bytes < 1u + (bytes[num_bytes - 1] >> 6)) {
+    return DracoError("rANS payload shorter than its initial state");
+  }
+  return Status::Ok();
+}
+
 // Skips one array coded by Draco's DecodeSymbols (`num_values` values in entries of
 // `components`) at r's position in `payload` (of `size` bytes), after bounding its tables.
 Status SkipDracoSymbols(const uint8_t* payload, size_t size, ByteReader* r, uint32_t num_values,
@@ -103,7 +115,7 @@ Status SkipDracoSymbols(const uint8_t* payload, size_t size, ByteReader* r, uint
   if (!r->ReadU8(&scheme)) return DracoTruncated();
   if (scheme == draco::SYMBOL_CODING_RAW) {
     uint8_t bit_length;
-    uint32_t num_symbols, num_bytes;
+    uint32_t num_symbols;
     if (!r->ReadU8(&bit_length) || !r->ReadVarUint(&num_symbols)) return DracoTruncated();
     if (bit_length < 1 || bit_length > kDracoMaxRawBitLength) {
       return DracoError("bad symbol bit length");
@@ -112,16 +124,15 @@ Status SkipDracoSymbols(const uint8_t* payload, size_t size, ByteReader* r, uint
       return DracoError("symbol table too large");
     }
     M4D_RETURN_IF_ERROR(SkipDracoFrequencyTable(r, num_symbols));
-    const uint8_t* skipped;
-    if (!r->ReadVarUint(&num_bytes) || !r->ReadBytes(num_bytes, &skipped)) {
-      return DracoTruncated();
-    }
-    return Status::Ok();
+    return SkipDracoRansPayload(r);
   }
   if (scheme != draco::SYMBOL_CODING_TAGGED) return DracoError("unknown symbol coding");
   uint32_t num_tags;
   if (!r->ReadVarUint(&num_tags)) return DracoTruncated();
   if (num_tags < 1 || num_tags > kDracoMaxTagSymbols) return DracoError("tag table too large");
+  ByteReader tags = *r;
+  M4D_RETURN_IF_ERROR(SkipDracoFrequencyTable(&tags, num_tags));
+  M4D_RETURN_IF_ERROR(SkipDracoRansPayload(&tags));
   // The tagged values' length is known only once the tags are decoded: let Draco decode the
   // array, whose tables are now bounded.
   draco::DecoderBuffer buffer;
