@@ -183,6 +183,53 @@ void ShiftFrameIndices(Stream* s, size_t first, uint32_t delta) {
   }
 }
 
+// A gaussian_set() (spec 5.4, version 0.6 and later) of `count` equal Gaussians of SH degree 0:
+// every group constant (bits 0), its Draco payload the 16 bytes of a point cloud without
+// attributes. Position (100, 100, 100), outside every motion grid box of the base stream.
+std::vector<uint8_t> ConstantSet(uint32_t count) {
+  std::vector<uint8_t> payload;
+  m4d::ByteWriter w(&payload);
+  w.WriteVarUint(count);
+  const float mins[5] = {100.0f, -4.0f, 0.0f, 1.0f, 0.5f};  // position .. sh_dc
+  for (float min : mins) {
+    w.WriteU8(0);  // bits
+    w.WriteU8(0);  // per_component
+    w.WriteF32(min);
+    w.WriteF32(0.0f);   // step
+    w.WriteVarUint(0);  // codebook_size
+  }
+  const uint8_t header[11] = {'D', 'R', 'A', 'C', 'O', 2, 3, 0, 0, 0, 0};
+  w.WriteVarUint(16);
+  w.WriteBytes(header, sizeof(header));
+  w.WriteU32(count);
+  w.WriteU8(0);  // no attribute decoder
+  return payload;
+}
+
+Packet MakePacket(uint8_t type, uint32_t frame_index, bool end_of_frame,
+                  const std::vector<uint8_t>& payload) {
+  Packet packet;
+  m4d::AppendPacket(type, frame_index, end_of_frame, payload.data(), payload.size(), &packet);
+  return packet;
+}
+
+// GOP 0 replaced by a foreground-only GOP of SH degree 0 whose dynamic set holds
+// MAX_GAUSSIANS_PER_SET Gaussians and whose frame 1 adds one more (spec 9, E33).
+void DynamicSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
+  Packet sequence = (*s)[kSeq];
+  sequence[24 + 3] = 0;  // sh_degree
+  FixCrcs(&sequence);
+  std::vector<uint8_t> compensation;
+  m4d::ByteWriter w(&compensation);
+  w.WriteVarUint(0);  // num_removed
+  w.WriteBytes(ConstantSet(1));
+  Stream gop = {sequence, MakePacket(M4D_PACKET_KEYFRAME_DYNAMIC, 0, false, ConstantSet(1u << 22)),
+                (*s)[kMlp], (*s)[kMotion],
+                MakePacket(M4D_PACKET_COMPENSATION, 1, true, compensation)};
+  s->erase(s->begin(), s->begin() + 8);
+  s->insert(s->begin(), gop.begin(), gop.end());
+}
+
 // An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
 Packet AppearancePacket(float step, uint32_t values = 3 * 80) {
   std::vector<int32_t> q(values);
@@ -464,6 +511,10 @@ std::vector<Case> Cases() {
          p[Find(p, "DRACO") + 6] = 2;
          FixCrcs(&p);
        }},
+      {"dynamic_set_above_limit", "M4D_ERR_LIMIT",
+       "a COMPENSATION adds a Gaussian to a dynamic set of MAX_GAUSSIANS_PER_SET (2^22) constant "
+       "ones",
+       DynamicSetAboveLimit},
       {"removed_count_inconsistent", "M4D_ERR_BITSTREAM",
        "num_removed one more than the removal flags set",
        [](Stream* s, std::vector<uint8_t>*) {
