@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <draco/core/draco_types.h>
+
 #include "bitstream/packet_header.h"
 #include "common/byte_writer.h"
 #include "common/crc32.h"
@@ -34,9 +36,10 @@ using Stream = std::vector<Packet>;  // packets in order
 // MLP_WEIGHTS, then MOTION_GRID and COMPENSATION of frames 1 and 2), 8..15 GOP 1.
 enum : size_t { kSeq = 0, kStatic = 1, kDynamic = 2, kMlp = 3, kMotion = 4, kComp = 5 };
 
-bool MakeBase(int version_minor, Stream* out) {
+bool MakeBase(int version_minor, Stream* out, int opacity_bits = 8) {
   m4d::StreamWriterOptions options;
   options.sequence.version_minor = version_minor;
+  options.quantization.opacity_bits = opacity_bits;
   options.sequence.sh_degree = 1;
   options.sequence.grid.resolution[0] = 8;
   options.sequence.grid.resolution[1] = 12;
@@ -228,6 +231,32 @@ void DynamicSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
                 MakePacket(M4D_PACKET_COMPENSATION, 1, true, compensation)};
   s->erase(s->begin(), s->begin() + 8);
   s->insert(s->begin(), gop.begin(), gop.end());
+}
+
+// Payload offset in a set packet of the base stream (SH degree 1, no codebooks) of group g's
+// bits (spec 5.4); g = 6 gives the octree flag's.
+size_t GroupOffset(const Packet& p, int g) {
+  static const int kComponents[6] = {3, 3, 3, 1, 3, 9};
+  size_t at = VaruintLength(p, 24);
+  for (int k = 0; k < g; ++k) {
+    const bool per_component = p[24 + at + 1] != 0;
+    at += 2 + 8 * (per_component ? kComponents[k] : 1);
+    at += VaruintLength(p, 24 + at);  // codebook_size 0
+  }
+  return at;
+}
+
+// A static keyframe set's opacity written at 9 bits (Draco UINT16 values up to 511, prediction
+// none), then declared 8 bits with a UINT8 attribute: spec 5.5 keeps each value's low 8 bits.
+void DracoValuesTruncated(Stream* s, std::vector<uint8_t>*) {
+  s->clear();
+  if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, s, 9)) return;
+  Packet& p = (*s)[kStatic];
+  p[24 + GroupOffset(p, 3)] = 8;
+  // Attributes: positions (unless an octree holds them), log scales, rotations, their index.
+  const size_t opacity = p[24 + GroupOffset(p, 6)] == 1 ? 3 : 4;
+  p[Find(p, "DRACO") + 17 + 5 * opacity + 1] = draco::DT_UINT8;
+  FixCrcs(&p);
 }
 
 // An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
@@ -540,6 +569,10 @@ std::vector<Case> ValidEdits() {
          p.insert(p.begin() + 24, padded, padded + 3);
          FixCrcs(&p);
        }},
+      {"edit_draco_values_truncated", "",
+       "a static keyframe set's opacity coded at 9 bits, declared 8 bits with UINT8 Draco values: "
+       "each value's low 8 bits count (spec 5.5)",
+       DracoValuesTruncated},
       {"edit_rans_initial_state_low", "",
        "level 0's brick flags (one 1) recoded with rANS from the initial state 2^15, below "
        "L_RANS: legal, the same frames",
