@@ -49,10 +49,15 @@ class Reader {
     for (int shift = 0; shift < 35; shift += 7) {
       const uint32_t b = U8();
       v |= (b & 127u) << shift;
-      if (!(b & 128u)) break;
+      if (!(b & 128u)) {
+        non_minimal_ = non_minimal_ || (shift > 0 && b == 0);  // a trailing zero group (spec 1)
+        break;
+      }
     }
     return v;
   }
+  // A varuint of the payload had groups of zeros after its value.
+  bool non_minimal() const { return non_minimal_; }
   int64_t VarSint() {
     const uint32_t z = VarUint();
     return static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
@@ -69,6 +74,7 @@ class Reader {
   }
   const uint8_t* data_;
   size_t size_, pos_ = 0;
+  bool non_minimal_ = false;
 };
 
 // Dequantization steps that are powers of two commute with rounding: a decoder that scales
@@ -89,6 +95,8 @@ struct Walk {
   bool dependent = false;       // the current keyframe is a dependent one (0.3)
   int version_minor = 0;
   uint32_t dynamic_count = 0;  // |D|, which gives the count of APPEARANCE and removal blocks
+  bool seen_packet = false;
+  uint32_t last_frame_index = 0;
 
   void Add(const std::string& f) { features.insert(f); }
 
@@ -111,6 +119,12 @@ struct Walk {
       }
     }
     const uint32_t payload_size = r->VarUint();
+    if (payload_size >= 4 && r->remaining() >= 4) {  // 5.2: an initial state below L_RANS
+      const uint8_t* x = r->Here();
+      if ((x[0] | x[1] << 8 | x[2] << 16 | uint32_t(x[3]) << 24) < (1u << 23)) {
+        Add("rans_initial_state_low");
+      }
+    }
     if (count >= 4096) {  // 5.2: four interleaved states from version 0.4
       Add(version_minor >= 4 ? "rans_states=4" : "rans_states=1,count>=4096");
       EXPECT_GE(payload_size, version_minor >= 4 ? 16u : 4u);
@@ -287,6 +301,11 @@ struct Walk {
 
   void Packet(const M4dPacketInfo& info, const uint8_t* payload) {
     Reader r(payload, info.payload_size);
+    if (seen_packet && last_frame_index == 0xffffffffu && info.frame_index == 0) {
+      Add("frame_index_wraps");  // spec 2: modulo 2^32
+    }
+    seen_packet = true;
+    last_frame_index = info.frame_index;
     const bool starts_dependent = frame_complete && (info.type == M4D_PACKET_STATIC_UPDATE ||
                                                      info.type == M4D_PACKET_KEYFRAME_DYNAMIC);
     frame_complete = info.type == M4D_PACKET_MLP_WEIGHTS || info.type == M4D_PACKET_COMPENSATION;
@@ -327,6 +346,7 @@ struct Walk {
         break;
     }
     EXPECT_TRUE(r.done()) << "payload of type " << info.type << " not consumed";
+    if (r.non_minimal()) Add("varuint_not_minimal");
   }
 };
 
