@@ -76,13 +76,18 @@ streams=(
   "synth_sh1_appearance|--gops 2 --frames-per-gop 4 --static 600 --dynamic 1500 --sh-degree 1 --motion-fraction 0.002 --seed 34 --appearance-fraction 0.3"
   "synth_v03_appearance|--gops 2 --frames-per-gop 3 --static 600 --dynamic 1500 --sh-degree 1 --motion-fraction 0.002 --seed 35 --appearance-fraction 0.3 --dependent-gops --bitstream-minor 3"
   "synth_sh2_codebooks|--gops 2 --frames-per-gop 3 --static 2000 --dynamic 600 --sh-degree 2 --motion-fraction 0.002 --seed 37 --codebook 16"
-  "synth_sh1_codebook_300|--gops 1 --frames-per-gop 2 --static 9700 --dynamic 200 --sh-degree 1 --motion-fraction 0.002 --seed 38 --codebook 300"
+  "synth_sh1_codebook_300|--gops 1 --frames-per-gop 2 --static 9700 --dynamic 200 --sh-degree 1 --motion-fraction 0.002 --seed 38 --codebook 300 --attribute-coding draco"
   "synth_v06_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 40 --dependent-gops --bitstream-minor 6"
   "synth_v05_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 39 --dependent-gops --bitstream-minor 5"
   "synth_v04_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 36 --dependent-gops --bitstream-minor 4"
   "synth_v02_sh2|--gops 2 --frames-per-gop 3 --static 600 --dynamic 200 --sh-degree 2 --motion-fraction 0.002 --seed 33 --bitstream-minor 2"
   "synth_max_levels_width|--gops 2 --frames-per-gop 2 --static 300 --dynamic 200 --sh-degree 2 --grid 8,8,16,8,32,8,64,8 --mlp-width 256 --bits 1 --motion-fraction 0.002 --seed 22"
   "synth_edge_cases|--gops 2 --frames-per-gop 3 --static 200 --dynamic 240 --sh-degree 1 --seed 41 --edge-cases"
+  "synth_v07_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 42 --codebook 16 --bitstream-minor 7"
+  "synth_sh1_adaptive|--gops 2 --frames-per-gop 3 --static 3000 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 43 --codebook 48 --attribute-coding adaptive"
+  "synth_sh3_adaptive_bits_12|--gops 1 --frames-per-gop 3 --static 800 --dynamic 200 --sh-degree 3 --motion-fraction 0.002 --seed 44 --bits 12 --attribute-coding adaptive"
+  "synth_sh0_adaptive_bits_2|--gops 1 --frames-per-gop 3 --static 500 --dynamic 200 --sh-degree 0 --motion-fraction 0.002 --seed 45 --bits 2 --attribute-coding adaptive"
+  "synth_sh1_draco_attributes|--gops 1 --frames-per-gop 3 --static 3000 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 46 --attribute-coding draco"
 )
 for entry in "${streams[@]}"; do
   name=${entry%%|*}

@@ -29,8 +29,6 @@
 namespace m4d {
 namespace {
 
-using testing::WriteSet;
-
 GaussianSet RandomSet(size_t n, int sh_degree, uint32_t seed) {
   std::mt19937 rng(seed);
   auto uniform = [&](float lo, float hi) {
@@ -101,13 +99,15 @@ struct ParsedSet {
 constexpr RotationCoding kFour = RotationCoding::kFourComponents;
 constexpr RotationCoding kThree = RotationCoding::kSmallestThree;
 
-// The syntax of the newest version with that rotation coding: four components are 0.4's, without
-// codebooks or octree positions.
+// Version 0.7's syntax with that rotation coding, whose attributes are all in Draco (0.8's
+// adaptive attributes are tested in adaptive_attributes_test.cc): four components are 0.4's,
+// without codebooks or octree positions.
 GaussianSetSyntax SyntaxOf(RotationCoding rotation, bool octree = true) {
   GaussianSetSyntax syntax;
   syntax.rotation = rotation;
   syntax.codebooks = rotation == kThree;
   syntax.octree_positions = rotation == kThree && octree;
+  syntax.adaptive_attributes = false;
   return syntax;
 }
 
@@ -169,6 +169,13 @@ std::vector<uint8_t> Reassemble(const std::vector<uint8_t>& bytes, const ParsedS
   w.WriteVarUint(static_cast<uint32_t>(draco.size()));
   w.WriteBytes(draco);
   return out;
+}
+
+// These tests are of the Draco payload: every set is written with 0.7's syntax, all attributes
+// in Draco.
+std::vector<uint8_t> WriteSet(const GaussianSet& set, GaussianQuantization q) {
+  q.syntax.adaptive_attributes = false;
+  return testing::WriteSet(set, q);
 }
 
 GaussianQuantization FourComponents(GaussianQuantization q) {

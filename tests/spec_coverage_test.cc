@@ -142,10 +142,13 @@ struct Walk {
     const bool smallest_three = version_minor >= 5;
     const int components[6] = {3, 3, smallest_three ? 3 : 4, 1, 3, 3 * (k - 1)};
     const bool octree = version_minor >= 7;  // positions may be outside Draco (5.6)
+    bool octree_used = false;
     int coded_before_rotation = 0;
     uint32_t rotation_bits = 0, position_bits = 0;
+    int widths[6] = {0, 0, 0, 0, 0, 0};  // of the values adaptive_attributes() would code
     for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
       const uint32_t bits = r->U8(), per_component = r->U8();
+      widths[g] = static_cast<int>(bits);
       if (g == 0) position_bits = bits;
       if (g < 2 && bits > 0) ++coded_before_rotation;
       if (g == 2) rotation_bits = bits;
@@ -162,13 +165,25 @@ struct Walk {
         // 5.4: min + 0 * step turns -0 into +0.
         if (bits == 0 && min == 0 && std::signbit(min)) Add("bits0_min_negative_zero");
       }
-      if (version_minor >= 6) Codebook(r, g, static_cast<uint32_t>(components[g]));
+      if (version_minor >= 6) {
+        const uint32_t size = Codebook(r, g, static_cast<uint32_t>(components[g]));
+        if (size > 0 && bits > 0) widths[g] = IndexWidth(size);
+      }
     }
     if (octree && position_bits > 0) {
       const uint32_t flag = r->U8();
       Add(flag ? "octree=1" : "octree=0");
       if (flag) Octree(r, count, static_cast<int>(position_bits));
       if (flag) --coded_before_rotation;  // positions are not a Draco attribute
+      octree_used = flag != 0;
+    }
+    if (version_minor >= 8 && AdaptiveAttributes(r, widths)) {
+      // Draco holds the positions alone, when they are neither constant nor in the octree.
+      const bool draco_present = position_bits > 0 && !octree_used;
+      Add(draco_present ? "adaptive,draco=positions" : "adaptive,draco=absent");
+      if (draco_present) r->Skip(r->VarUint());
+      Add(rotation_bits > 0 ? "rotation=smallest_three" : "rotation=smallest_three,bits=0");
+      return count;
     }
     const uint32_t draco = r->VarUint();
     if (smallest_three) {
@@ -181,16 +196,39 @@ struct Walk {
     return count;
   }
 
-  // 5.4 (0.6): a group's codebook_size and entries.
-  void Codebook(Reader* r, int group, uint32_t components) {
+  // 5.4 (0.6): a group's codebook_size and entries. Returns the size.
+  uint32_t Codebook(Reader* r, int group, uint32_t components) {
     const uint32_t size = r->VarUint();
     if (size == 0) {
       Add("codebook_size=0");
-      return;
+      return 0;
     }
     Add("codebook,group=" + std::to_string(group));
     Add(size <= 256 ? "codebook_index=uint8" : "codebook_index=uint16");
+    if ((size & (size - 1)) != 0) Add("codebook_size_not_power_of_two");
     SymbolBlock(r, size * components);
+    return size;
+  }
+
+  static int IndexWidth(uint32_t size) {
+    int width = 0;
+    while ((1u << width) < size) ++width;
+    return width;
+  }
+
+  // 5.4, 5.7 (0.8): attribute_coding and, when 1, adaptive_attributes(). Returns the flag.
+  bool AdaptiveAttributes(Reader* r, const int* widths) {
+    const uint32_t flag = r->U8();
+    Add(flag ? "attribute_coding=1" : "attribute_coding=0");
+    if (!flag) return false;
+    for (int g = 1; g < 6; ++g) {
+      if (widths[g] > 8) Add("adaptive_bypass_bits");  // 5.7: the bits below the tree's 8
+      if (widths[g] > 0 && widths[g] < 3) Add("adaptive_width<3");
+    }
+    const uint32_t size = r->VarUint();
+    Add(size == 4 ? "adaptive_size=4" : "adaptive_size>4");
+    r->Skip(size);
+    return true;
   }
 
   // 5.6 (0.7): octree_positions(), decoded by the SDK's reader to see its leaves.

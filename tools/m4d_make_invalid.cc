@@ -22,6 +22,7 @@
 #include "common/byte_writer.h"
 #include "common/crc32.h"
 #include "entropy/symbol_block_writer.h"
+#include "layers/adaptive_attribute_writer.h"
 #include "m4d/m4d.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
@@ -36,10 +37,14 @@ using Stream = std::vector<Packet>;  // packets in order
 // MLP_WEIGHTS, then MOTION_GRID and COMPENSATION of frames 1 and 2), 8..15 GOP 1.
 enum : size_t { kSeq = 0, kStatic = 1, kDynamic = 2, kMlp = 3, kMotion = 4, kComp = 5 };
 
+// Its sets keep every attribute in Draco, whose payload many cases damage (version 0.8's
+// adaptive attributes have cases of their own, AdaptiveCodebookSet).
 bool MakeBase(int version_minor, Stream* out, int opacity_bits = 8) {
   m4d::StreamWriterOptions options;
   options.sequence.version_minor = version_minor;
   options.quantization.opacity_bits = opacity_bits;
+  options.quantization.attribute_coding = m4d::AttributeCoding::kDraco;
+  options.compensation_quantization.attribute_coding = m4d::AttributeCoding::kDraco;
   options.sequence.sh_degree = 1;
   options.sequence.grid.resolution[0] = 8;
   options.sequence.grid.resolution[1] = 12;
@@ -141,9 +146,9 @@ size_t Find(const Packet& p, const char* text) {
   return p.size();
 }
 
-// Offset in a set packet of the octree flag (version 0.7) of a set whose positions are in
-// Draco: the byte before draco_size, the varuint before the Draco magic.
-size_t OctreeFlagOffset(const Packet& p) {
+// Offset in a set packet of the byte before draco_size, the varuint before the Draco magic:
+// attribute_coding (version 0.8).
+size_t AttributeCodingOffset(const Packet& p) {
   size_t i = Find(p, "DRACO") - 1;  // draco_size's last byte
   while (p[i - 1] & 0x80) --i;
   return i - 1;
@@ -201,6 +206,7 @@ std::vector<uint8_t> ConstantSet(uint32_t count) {
     w.WriteF32(0.0f);   // step
     w.WriteVarUint(0);  // codebook_size
   }
+  w.WriteU8(0);  // attribute_coding (0.8): Draco
   const uint8_t header[11] = {'D', 'R', 'A', 'C', 'O', 2, 3, 0, 0, 0, 0};
   w.WriteVarUint(16);
   w.WriteBytes(header, sizeof(header));
@@ -214,6 +220,50 @@ Packet MakePacket(uint8_t type, uint32_t frame_index, bool end_of_frame,
   Packet packet;
   m4d::AppendPacket(type, frame_index, end_of_frame, payload.data(), payload.size(), &packet);
   return packet;
+}
+
+// A KEYFRAME_STATIC set of two Gaussians of SH degree 1 at (100, 100, 100), every group
+// constant but the log scales: a codebook of 3 entries at 1 bit, the indices `indices` (2 bits
+// each, spec 5.7) coded as adaptive_attributes() with attribute_coding `coding`, its payload
+// changed by `edit` before it is written.
+Packet AdaptiveCodebookSet(std::vector<uint32_t> indices, uint8_t coding,
+                           const std::function<void(std::vector<uint8_t>*)>& edit) {
+  std::vector<uint8_t> payload;
+  m4d::ByteWriter w(&payload);
+  w.WriteVarUint(static_cast<uint32_t>(indices.size()));
+  const float mins[6] = {100.0f, -4.0f, 0.0f, 1.0f, 0.5f, 0.0f};  // position .. sh_rest
+  for (int g = 0; g < 6; ++g) {
+    w.WriteU8(g == 1 ? 1 : 0);  // bits
+    w.WriteU8(0);               // per_component
+    w.WriteF32(mins[g]);
+    w.WriteF32(g == 1 ? 1.0f : 0.0f);  // step
+    w.WriteVarUint(g == 1 ? 3 : 0);    // codebook_size
+    if (g == 1) {
+      const int32_t entries[9] = {0, 0, 0, 1, 0, 1, 1, 1, 0};
+      m4d::WriteSymbolBlock(entries, 9, m4d::RansLayout::kInterleaved, &w);
+    }
+  }
+  w.WriteU8(coding);
+  m4d::AdaptiveField field;
+  field.components = 1;
+  field.width = 2;
+  field.limit = 4;
+  field.q = indices.data();
+  std::vector<uint8_t> adaptive =
+      m4d::EncodeAdaptiveAttributes(&field, 1, static_cast<uint32_t>(indices.size()));
+  edit(&adaptive);
+  w.WriteVarUint(static_cast<uint32_t>(adaptive.size()));
+  w.WriteBytes(adaptive);
+  return MakePacket(M4D_PACKET_KEYFRAME_STATIC, 0, false, payload);
+}
+
+// Replaces the static keyframe of GOP 0 by AdaptiveCodebookSet(indices, coding, edit).
+std::function<void(Stream*, std::vector<uint8_t>*)> SetAdaptiveStatic(
+    std::vector<uint32_t> indices, uint8_t coding = 1,
+    std::function<void(std::vector<uint8_t>*)> edit = [](std::vector<uint8_t>*) {}) {
+  return [=](Stream* s, std::vector<uint8_t>*) {
+    (*s)[kStatic] = AdaptiveCodebookSet(indices, coding, edit);
+  };
 }
 
 // GOP 0 replaced by a foreground-only GOP of SH degree 0 whose dynamic set holds
@@ -439,9 +489,28 @@ std::vector<Case> Cases() {
       {"octree_flag_not_binary", "M4D_ERR_BITSTREAM", "a set's octree flag 2 (version 0.7: 0 or 1)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
-         p[OctreeFlagOffset(p)] = 2;
+         p[24 + GroupOffset(p, 6)] = 2;
          FixCrcs(&p);
        }},
+      {"attribute_coding_not_binary", "M4D_ERR_BITSTREAM",
+       "a set's attribute_coding 2 (version 0.8: 0 or 1)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kStatic];
+         p[AttributeCodingOffset(p)] = 2;
+         FixCrcs(&p);
+       }},
+      {"adaptive_index_above_codebook", "M4D_ERR_BITSTREAM",
+       "adaptive attributes code index 3 of a codebook of 3 entries", SetAdaptiveStatic({1, 3})},
+      {"adaptive_size_below_4", "M4D_ERR_BITSTREAM",
+       "adaptive_attributes() of 3 bytes (the range decoder starts from 4)",
+       SetAdaptiveStatic({1, 2}, 1, [](std::vector<uint8_t>* a) { a->resize(3); })},
+      {"adaptive_payload_short", "M4D_ERR_BITSTREAM",
+       "adaptive_attributes() without its last byte: decoding needs a byte past its end",
+       SetAdaptiveStatic(std::vector<uint32_t>(300, 0), 1,
+                         [](std::vector<uint8_t>* a) { a->pop_back(); })},
+      {"adaptive_trailing_byte", "M4D_ERR_BITSTREAM",
+       "adaptive_attributes() with a byte after what decoding reads",
+       SetAdaptiveStatic({1, 2}, 1, [](std::vector<uint8_t>* a) { a->push_back(0); })},
       {"draco_bad_magic", "M4D_ERR_BITSTREAM", "the Draco header's magic damaged",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,8 @@ struct Options {
   int mlp_layers = 1, mlp_width = 64;
   int bits = 0;      // every Gaussian group's bits (0: the writer's defaults)
   int codebook = 0;  // codebook size of log scales, SH DC and higher SH (0: none; 0.6)
+  // How every set codes its attributes but the positions (0.8): the smaller, or always one.
+  m4d::AttributeCoding attribute_coding = m4d::AttributeCoding::kSmaller;
   // GOPs after the first are dependent (bitstream 0.3): they keep the static set and change
   // this share of it (removed, and replaced or added) with a STATIC_UPDATE (0: none).
   bool dependent_gops = false;
@@ -133,6 +136,12 @@ bool StreamOptions(const Options& opt, m4d::StreamWriterOptions* wo) {
     q.log_scale_codebook = q.sh_dc_codebook = q.sh_rest_codebook = opt.codebook;
     q.codebooks_only_where_they_pay = false;
   }
+  if (opt.attribute_coding == m4d::AttributeCoding::kAdaptive && opt.bitstream_minor < 8) {
+    std::fprintf(stderr, "m4d_synth: adaptive attributes need bitstream 0.8\n");
+    return false;
+  }
+  wo->quantization.attribute_coding = opt.attribute_coding;
+  wo->compensation_quantization.attribute_coding = opt.attribute_coding;
   return true;
 }
 
@@ -284,6 +293,14 @@ int main(int argc, char** argv) {
                  "codebook size of the keyframes' log scales, SH DC and higher SH, used in every "
                  "set of at least 32 Gaussians per entry (0: none; bitstream 0.6)")
       ->check(CLI::Range(0, 4096));
+  const std::map<std::string, m4d::AttributeCoding> codings = {
+      {"smaller", m4d::AttributeCoding::kSmaller},
+      {"draco", m4d::AttributeCoding::kDraco},
+      {"adaptive", m4d::AttributeCoding::kAdaptive}};
+  app.add_option("--attribute-coding", opt.attribute_coding,
+                 "how every set codes its attributes but the positions: the smaller of Draco and "
+                 "adaptive attributes (bitstream 0.8), or always one of them")
+      ->transform(CLI::CheckedTransformer(codings, CLI::ignore_case));
   app.add_option("--appearance-fraction", opt.appearance_fraction,
                  "share of the dynamic Gaussians whose colour an APPEARANCE changes in each inter "
                  "frame but a GOP's first (0: none; bitstream 0.3)")

@@ -1,7 +1,8 @@
 // libFuzzer target for gaussian_set() (KEYFRAME_STATIC, KEYFRAME_DYNAMIC and the added set of
 // COMPENSATION): the first byte picks the SH degree (bits 0-1), the rotation coding (bit 2) and
-// whether groups have codebook fields (bit 3, version 0.6) and whether positions are an octree
-// (bit 4, version 0.7), the rest is the payload. A set that
+// whether groups have codebook fields (bit 3, version 0.6), whether positions are an octree
+// (bit 4, version 0.7) and whether sets have attribute_coding (bit 5, version 0.8), the rest is
+// the payload. A set that
 // decodes has arrays of its count's sizes; a count above the limit never allocates.
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                                        : m4d::RotationCoding::kFourComponents;
   syntax.codebooks = (data[0] & 8) != 0;
   syntax.octree_positions = (data[0] & 16) != 0;
+  syntax.adaptive_attributes = (data[0] & 32) != 0;
   m4d::ByteReader reader(data + 1, size - 1);
   m4d::GaussianSet set;
   if (m4d::ReadGaussianSet(&reader, sh_degree, syntax, 1u << 16, &set).ok()) {

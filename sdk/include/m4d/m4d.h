@@ -49,10 +49,10 @@ extern "C" {
 
 /* Library version (of this SDK), and the bitstream version it decodes. */
 #define M4D_VERSION_MAJOR 0
-#define M4D_VERSION_MINOR 7
+#define M4D_VERSION_MINOR 8
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 7 /* decodes 0.2 to 0.6 streams too */
+#define M4D_BITSTREAM_VERSION_MINOR 8 /* decodes 0.2 to 0.7 streams too */
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0

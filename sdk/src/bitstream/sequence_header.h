@@ -15,7 +15,8 @@ namespace m4d {
 
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
 // keyframes, 0.3 is 0.4 without interleaved rANS states, 0.4 is 0.5 without smallest-three
-// rotations, 0.5 is 0.6 without codebooks, 0.6 is 0.7 with positions in Draco; spec 10).
+// rotations, 0.5 is 0.6 without codebooks, 0.6 is 0.7 with positions in Draco, 0.7 is 0.8
+// without adaptive attributes; spec 10).
 constexpr int kOldestBitstreamMinor = 2;
 
 // True when the version is one this decoder implements.
@@ -43,13 +44,14 @@ struct SequenceHeader {
     return version_minor >= 4 ? RansLayout::kInterleaved : RansLayout::kSingleState;
   }
   // Smallest-three rotations exist from 0.5 on, codebooks from 0.6 on, octree positions from
-  // 0.7 on.
+  // 0.7 on, adaptive attributes from 0.8 on.
   GaussianSetSyntax gaussian_set_syntax() const {
     GaussianSetSyntax syntax;
     syntax.rotation =
         version_minor >= 5 ? RotationCoding::kSmallestThree : RotationCoding::kFourComponents;
     syntax.codebooks = version_minor >= 6;
     syntax.octree_positions = version_minor >= 7;
+    syntax.adaptive_attributes = version_minor >= 8;
     syntax.rans_layout = rans_layout();
     return syntax;
   }

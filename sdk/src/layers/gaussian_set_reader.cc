@@ -1,4 +1,4 @@
-// Decoding of gaussian_set() (bitstream-spec 5.4, 5.5).
+// Decoding of gaussian_set() (bitstream-spec 5.4, 5.5, 5.6, 5.7).
 //
 // Draco 1.5 trusts its input: a hostile stream can make it allocate from any count it
 // declares (points, components, symbol tables). So the Draco stream's structure is walked
@@ -20,6 +20,7 @@
 
 #include "common/spec_limits.h"
 #include "entropy/symbol_block_reader.h"
+#include "layers/adaptive_attributes.h"
 #include "layers/octree_positions.h"
 
 namespace m4d {
@@ -47,9 +48,11 @@ struct GroupCoding {
   bool rotation_index = false;
   float min[kMaxGroupComponents];
   float step[kMaxGroupComponents];
-  uint32_t codebook_size = 0;    // 0: scalar values
-  std::vector<float> codebook;   // dequantized entries, [entry][component]
-  std::vector<uint32_t> octree;  // positions from 0.7: q of each Gaussian, not in Draco
+  uint32_t codebook_size = 0;   // 0: scalar values
+  std::vector<float> codebook;  // dequantized entries, [entry][component]
+  // The attribute's values when they are not in Draco: octree positions (0.7), adaptive
+  // attributes (0.8).
+  std::vector<uint32_t> q;
 };
 
 draco::DataType DracoDataType(int bits) {
@@ -308,25 +311,29 @@ const uint8_t* AttributeValues(const draco::PointCloud& pc, int j, const GroupCo
 // Rotations coded as their three smallest components (spec 5.4): the three were dequantized
 // into slots 0..2 of each quaternion; `index` (null when the rotation group has bits 0, which
 // means index 0 throughout) places them and the recovered largest component.
-Status ComposeRotations(const uint8_t* index, uint32_t count, float* rotations) {
+template <typename T>
+Status ComposeRotations(const T* index, uint32_t count, float* rotations) {
   for (uint32_t i = 0; i < count; ++i, rotations += 4) {
-    const int k = index != nullptr ? index[i] : 0;
+    const uint32_t k = index != nullptr ? index[i] : 0;
     if (k > 3) return BitstreamError("rotation index above 3");
-    ComposeSmallestThree(rotations, k, rotations);
+    ComposeSmallestThree(rotations, static_cast<int>(k), rotations);
   }
   return Status::Ok();
 }
 
-Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const GroupCoding* groups,
-                    int num_groups, int sh_degree, GaussianSet* out) {
-  const GroupCoding* coded[kNumGaussianGroups + 1];
+// The groups Draco codes: those with bits whose values are not decoded already.
+int DracoGroups(const GroupCoding* groups, int num_groups, const GroupCoding** coded) {
   int num_coded = 0;
-  bool smallest_three = false;
   for (int k = 0; k < num_groups; ++k) {
-    smallest_three = smallest_three || groups[k].rotation_index;
-    if (groups[k].bits > 0 && groups[k].octree.empty()) coded[num_coded++] = &groups[k];
+    if (groups[k].bits > 0 && groups[k].q.empty()) coded[num_coded++] = &groups[k];
   }
+  return num_coded;
+}
 
+// Decodes the Draco payload of the groups `coded` into `pc`.
+Status DecodeDraco(const uint8_t* payload, size_t size, uint32_t count,
+                   const GroupCoding* const* coded, int num_coded,
+                   std::unique_ptr<draco::PointCloud>* out) {
   std::unique_ptr<draco::PointCloud> pc;
   try {
     M4D_RETURN_IF_ERROR(CheckDracoStream(payload, size, count, coded, num_coded));
@@ -345,6 +352,16 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
   if (pc == nullptr || pc->num_points() != count || pc->num_attributes() != num_coded) {
     return DracoError("decoded point cloud does not match the set");
   }
+  *out = std::move(pc);
+  return Status::Ok();
+}
+
+// Dequantizes every group into `out`: from the Draco point cloud `pc` (null when Draco codes
+// no group) or from the values decoded outside it.
+Status DecodeGroups(const draco::PointCloud* pc, uint32_t count, const GroupCoding* groups,
+                    int num_groups, int sh_degree, GaussianSet* out) {
+  const GroupCoding* coded[kNumGaussianGroups + 1];
+  const int num_coded = DracoGroups(groups, num_groups, coded);
   const uint8_t* values[kNumGaussianGroups + 1];
   for (int j = 0; j < num_coded; ++j) {
     values[j] = AttributeValues(*pc, j, *coded[j], count);
@@ -352,15 +369,22 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
       return DracoError("decoded attribute " + std::to_string(j) + " is malformed");
     }
   }
+  bool smallest_three = false;
+  for (int k = 0; k < num_groups; ++k) smallest_three = smallest_three || groups[k].rotation_index;
 
   out->sh_degree = sh_degree;
   out->Resize(count);
   const uint8_t* rotation_index = nullptr;
+  const uint32_t* adaptive_rotation_index = nullptr;
   int j = 0;
   for (int k = 0; k < num_groups; ++k) {
     const GroupCoding& g = groups[k];
     if (g.rotation_index) {
-      if (g.bits > 0) rotation_index = values[j++];  // UINT8, one component
+      if (g.bits > 0 && !g.q.empty()) {
+        adaptive_rotation_index = g.q.data();
+      } else if (g.bits > 0) {
+        rotation_index = values[j++];  // UINT8, one component
+      }
       continue;
     }
     size_t stride;
@@ -374,9 +398,14 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
       }
       continue;
     }
-    if (!g.octree.empty()) {
-      Dequantize<uint32_t>(reinterpret_cast<const uint8_t*>(g.octree.data()), count, g, dst,
-                           stride);  // below 2^bits by construction
+    if (!g.q.empty()) {
+      // Below 2^bits or the codebook size: checked as they were decoded.
+      const uint8_t* q = reinterpret_cast<const uint8_t*>(g.q.data());
+      if (g.codebook_size > 0) {
+        LookUp<uint32_t>(q, count, g, dst, stride);
+      } else {
+        Dequantize<uint32_t>(q, count, g, dst, stride);
+      }
       continue;
     }
     bool ok;
@@ -401,8 +430,10 @@ Status DecodeGroups(const uint8_t* payload, size_t size, uint32_t count, const G
     }
     ++j;
   }
-  return smallest_three ? ComposeRotations(rotation_index, count, out->rotations.data())
-                        : Status::Ok();
+  if (!smallest_three) return Status::Ok();
+  return adaptive_rotation_index != nullptr
+             ? ComposeRotations(adaptive_rotation_index, count, out->rotations.data())
+             : ComposeRotations(rotation_index, count, out->rotations.data());
 }
 
 // codebook_size and, when not 0, the entries of group `g` (version 0.6, spec 5.4), dequantized
@@ -434,7 +465,30 @@ Status ReadCodebook(ByteReader* reader, RansLayout layout, const std::string& wh
   return Status::Ok();
 }
 
+// adaptive_attributes() (version 0.8, spec 5.7): every group but the positions with bits, and
+// the rotation index, decoded into the groups' q.
+Status ReadAdaptiveGroups(ByteReader* reader, uint32_t count, GroupCoding* groups, int num_groups) {
+  AdaptiveField fields[kNumGaussianGroups + 1];
+  int num_fields = 0;
+  for (int k = 0; k < num_groups; ++k) {
+    GroupCoding& g = groups[k];
+    if (g.group == kGroupPosition || g.bits == 0) continue;
+    AdaptiveField& field = fields[num_fields++];
+    field.components = AttributeComponents(g);
+    field.width = g.codebook_size > 0 ? CodebookIndexWidth(g.codebook_size) : g.bits;
+    field.limit = AttributeLimit(g);
+    field.own_context = AdaptiveOwnContext(g.group, g.codebook_size > 0) && !g.rotation_index;
+    g.q.resize(static_cast<size_t>(count) * static_cast<size_t>(field.components));
+    field.q = g.q.data();
+  }
+  return ReadAdaptiveAttributes(reader, fields, num_fields, count);
+}
+
 }  // namespace
+
+bool AdaptiveOwnContext(int group, bool codebook) {
+  return !codebook && (group == kGroupLogScale || group == kGroupRotation || group == kGroupShDc);
+}
 
 bool GroupAllowsCodebook(int group) {
   return group == kGroupLogScale || group == kGroupShDc || group == kGroupShRest;
@@ -524,17 +578,28 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSynta
   }
   if (octree) {
     GroupCoding& g = groups[kGroupPosition];
-    g.octree.resize(3 * static_cast<size_t>(count));
-    M4D_RETURN_IF_ERROR(
-        ReadOctreePositions(reader, syntax.rans_layout, count, g.bits, g.octree.data()));
+    g.q.resize(3 * static_cast<size_t>(count));
+    M4D_RETURN_IF_ERROR(ReadOctreePositions(reader, syntax.rans_layout, count, g.bits, g.q.data()));
   }
-  uint32_t draco_size;
-  const uint8_t* draco_payload;
-  if (!reader->ReadVarUint(&draco_size) || draco_size == 0 ||
-      !reader->ReadBytes(draco_size, &draco_payload)) {
-    return BitstreamError("gaussian_set: draco_size outside 1..remaining");
+  uint8_t adaptive = 0;
+  if (syntax.adaptive_attributes && (!reader->ReadU8(&adaptive) || adaptive > 1)) {
+    return BitstreamError("gaussian_set: attribute_coding truncated or not 0 or 1");
   }
-  return DecodeGroups(draco_payload, draco_size, count, groups, num_groups, sh_degree, out);
+  if (adaptive) M4D_RETURN_IF_ERROR(ReadAdaptiveGroups(reader, count, groups, num_groups));
+
+  const GroupCoding* coded[kNumGaussianGroups + 1];
+  const int num_coded = DracoGroups(groups, num_groups, coded);
+  std::unique_ptr<draco::PointCloud> pc;
+  if (num_coded > 0 || !adaptive) {  // before 0.8 a payload is always present
+    uint32_t draco_size;
+    const uint8_t* draco_payload;
+    if (!reader->ReadVarUint(&draco_size) || draco_size == 0 ||
+        !reader->ReadBytes(draco_size, &draco_payload)) {
+      return BitstreamError("gaussian_set: draco_size outside 1..remaining");
+    }
+    M4D_RETURN_IF_ERROR(DecodeDraco(draco_payload, draco_size, count, coded, num_coded, &pc));
+  }
+  return DecodeGroups(pc.get(), count, groups, num_groups, sh_degree, out);
 }
 
 }  // namespace m4d

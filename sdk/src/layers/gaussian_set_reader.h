@@ -34,6 +34,10 @@ int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation);
 // higher SH.
 bool GroupAllowsCodebook(int group);
 
+// Whether adaptive_attributes() (version 0.8, spec 5.7) conditions a group's component r > 0 on
+// component r - 1 of the same Gaussian: scalar log scales, rotations and SH DC.
+bool AdaptiveOwnContext(int group, bool codebook);
+
 // Reads one gaussian_set() from `reader`, with the stream version's syntax. `out` must
 // have been constructed (with the caller's allocator); its sh_degree is set to `sh_degree` and
 // it is resized to the decoded count. Counts above `max_count` fail with M4D_ERR_LIMIT before
