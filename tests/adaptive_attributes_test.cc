@@ -223,6 +223,17 @@ TEST(AdaptiveAttributes, TheWriterTakesTheSmallerCoding) {
                      WriteSet(tiny, Coded(narrow, AttributeCoding::kDraco)).size()));
 }
 
+// Higher SH of degree 3 at 5 bits: 24 + 30 + 2 + 8 + 24 + 225 decisions per Gaussian, above
+// kMaxAdaptiveBinsPerGaussian: Draco's faster decoding is kept, though adaptive is smaller.
+TEST(AdaptiveAttributes, SetsOfManyDecisionsPerGaussianKeepDraco) {
+  const GaussianSet set = RegionalSet(20000, 3, 13);
+  const GaussianQuantization q;
+  const size_t adaptive = WriteSet(set, Coded(q, AttributeCoding::kAdaptive)).size();
+  const size_t draco = WriteSet(set, Coded(q, AttributeCoding::kDraco)).size();
+  EXPECT_LT(adaptive, draco);
+  EXPECT_EQ(WriteSet(set, q).size(), draco);
+}
+
 // The byte of attribute_coding: where the set coded with Draco under 0.8 differs from 0.7.
 size_t AttributeCodingOffset(const GaussianSet& set, GaussianQuantization q) {
   q.attribute_coding = AttributeCoding::kDraco;

@@ -42,6 +42,12 @@ struct GaussianQuantization {
   GaussianSetSyntax syntax;
 };
 
+// Adaptive attributes take about 5 ns per binary decision to decode on one core; above this
+// many per Gaussian (SH degree 3 at 3 bits and more) a set keeps Draco's faster decoding,
+// unless attribute_coding asks for them (100k Gaussians of SH degree 1 at rate point r1's bits
+// make 54).
+constexpr int kMaxAdaptiveBinsPerGaussian = 128;
+
 // Fewer Gaussians per entry and the entries cost more than the indices save.
 constexpr int kCodebookMinGaussiansPerEntry = 32;
 
