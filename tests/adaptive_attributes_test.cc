@@ -112,13 +112,8 @@ TEST(BinaryRangeCoder, ShortAndLongPayloadsAreDetected) {
 // own quarter of the range. Neighbours in Morton order then say where a value lies, not what
 // it is: where adaptive attributes beat Draco's differences.
 GaussianSet RegionalSet(size_t n, int sh_degree, uint32_t seed) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-  };
-  GaussianSet set;
-  set.sh_degree = sh_degree;
-  set.Resize(n);
+  testing::UniformFloats uniform(seed);
+  GaussianSet set = testing::ZeroSet(n, sh_degree);
   const size_t k = static_cast<size_t>(set.sh_floats());
   const size_t values = 3 + 4 + 1 + k;
   std::vector<float> quarter(125 * values);

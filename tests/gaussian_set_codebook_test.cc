@@ -26,18 +26,13 @@ using testing::WriteSet;
 // Colours and scales drawn around `clusters` centres with a little noise, as a trained
 // keyframe's cluster; positions and rotations uniform.
 GaussianSet ClusteredSet(size_t n, int sh_degree, int clusters, uint32_t seed) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-  };
-  GaussianSet set;
-  set.sh_degree = sh_degree;
-  set.Resize(n);
+  testing::UniformFloats uniform(seed);
+  GaussianSet set = testing::ZeroSet(n, sh_degree);
   const size_t k = static_cast<size_t>(set.sh_floats());
   std::vector<float> centres(static_cast<size_t>(clusters) * (k + 3));
   for (float& v : centres) v = uniform(-1, 1);
   for (size_t i = 0; i < n; ++i) {
-    const float* c = &centres[(rng() % clusters) * (k + 3)];
+    const float* c = &centres[(uniform.Next() % clusters) * (k + 3)];
     for (size_t r = 0; r < k; ++r) set.sh[i * k + r] = c[r] + uniform(-0.01f, 0.01f);
     for (size_t r = 0; r < 3; ++r)
       set.log_scales[3 * i + r] = c[k + r] - 4 + uniform(-0.01f, 0.01f);

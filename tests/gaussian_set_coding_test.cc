@@ -30,13 +30,8 @@ namespace m4d {
 namespace {
 
 GaussianSet RandomSet(size_t n, int sh_degree, uint32_t seed) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) {
-    return std::uniform_real_distribution<float>(lo, hi)(rng);
-  };
-  GaussianSet set;
-  set.sh_degree = sh_degree;
-  set.Resize(n);
+  testing::UniformFloats uniform(seed);
+  GaussianSet set = testing::ZeroSet(n, sh_degree);
   for (float& v : set.positions) v = uniform(-10, 10);
   for (float& v : set.log_scales) v = uniform(-7, -1);
   for (float& v : set.rotations) v = uniform(-1, 1);
