@@ -25,6 +25,7 @@
 #include "train/point_initialisation.h"
 #include "train/progress_bar.h"
 #include "train/prune_share_selection.h"
+#include "train/rate_weight_selection.h"
 #include "train/scene_extent.h"
 
 namespace m4d {
@@ -799,6 +800,43 @@ TEST(PruneShareSelectionTest, TakesTheLargestShareWithinTheBound) {
   EXPECT_EQ(sparse.share, 0.0f);
   EXPECT_TRUE(sparse.validation_cameras.empty());
   EXPECT_TRUE(sparse.trials.empty());
+}
+
+// The rate term's branches code smaller keyframes; a loose bound takes the largest weight, a
+// bound no branch meets tries every weight and keeps 0, and without quantization-aware
+// iterations there is nothing to select.
+TEST(RateWeightSelectionTest, TakesTheLargestWeightWithinTheBound) {
+  const Scene scene = MakeScene();
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 600;
+  options.quantization_aware_iterations = 200;  // the selection's 100, from iteration 200
+  options.quantization.sh_dc_bits = options.quantization.log_scale_bits = 5;
+  RateWeightSelectionOptions selection;
+  selection.weights = {1.0, 0.1};  // large enough to move this small keyframe's levels
+  selection.held_out.max_loss_per_halving_db = 100.0;
+  RateWeightChoice loose;
+  ASSERT_TRUE(SelectRateWeight(scene.capture, 0, options, selection, nullptr, &loose).ok());
+  EXPECT_EQ(loose.weight, 1.0);
+  ASSERT_EQ(loose.trials.size(), 1u);
+  EXPECT_EQ(loose.validation_cameras, ValidationCameras(scene.capture));
+  EXPECT_LT(loose.trials[0].bytes, loose.without.bytes);
+  EXPECT_EQ(loose.trials[0].gaussians, loose.without.gaussians);  // the same prune
+  EXPECT_GT(loose.without.psnr, 15.0);
+
+  selection.held_out.max_loss_per_halving_db = -100.0;  // a branch would have to gain a lot
+  RateWeightChoice strict;
+  ASSERT_TRUE(SelectRateWeight(scene.capture, 0, options, selection, nullptr, &strict).ok());
+  EXPECT_EQ(strict.weight, 0.0);
+  ASSERT_EQ(strict.trials.size(), 2u);
+  EXPECT_EQ(strict.trials[0].bytes, loose.trials[0].bytes);  // deterministic branches
+  EXPECT_EQ(strict.trials[1].weight, 0.1);
+
+  options.quantization_aware_iterations = 0;
+  RateWeightChoice none;
+  ASSERT_TRUE(SelectRateWeight(scene.capture, 0, options, selection, nullptr, &none).ok());
+  EXPECT_EQ(none.weight, 0.0);
+  EXPECT_TRUE(none.validation_cameras.empty());
+  EXPECT_TRUE(none.trials.empty());
 }
 
 TEST(ProgressBarTest, FormatsTheLine) {

@@ -209,11 +209,7 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->expected(3)
       ->delimiter(',')
       ->check(CLI::Range(0, 4096));
-  cmd->add_option("--keyframe-rate-weight", a->keyframe_rate_weight,
-                  "lambda_k: while keyframe training is quantization-aware, its loss gains this "
-                  "times the bits of the attributes coded as values, per 100 kilobits (default: "
-                  "the rate point's, 0)")
-      ->check(CLI::Range(0.0, 1e3));
+  AddRateWeightOption(cmd, &a->keyframe_rate);
   cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
 }
@@ -260,7 +256,7 @@ Status ResolveEncoderOptions(const EncodeArguments& args, EncoderOptions* option
     options->quantization.sh_dc_codebook = k[1];
     options->quantization.sh_rest_codebook = k[2];
   }
-  if (args.keyframe_rate_weight >= 0) options->keyframe_rate_weight = args.keyframe_rate_weight;
+  if (args.keyframe_rate.weight >= 0) options->keyframe_rate_weight = args.keyframe_rate.weight;
   if (options->gop.fixed_length > 0) options->gop.adaptive = false;
   options->keyframe = KeyframeSchedule(args);
   return Status::Ok();
@@ -326,7 +322,9 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"keyframe_bits", QuantizationBits(o.quantization)},
           {"compensation_bits", QuantizationBits(o.compensation_quantization)},
           {"keyframe_codebooks", Codebooks(o.quantization)},
-          {"keyframe_rate_weight", o.keyframe_rate_weight},
+          {"keyframe_rate_weight", args.keyframe_rate.automatic
+                                       ? nlohmann::json("auto")
+                                       : nlohmann::json(o.keyframe_rate_weight)},
           {"fps", args.fps},
           {"seed", o.seed}};
 }
@@ -384,6 +382,14 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, options.first_frame,
                                           FirstKeyframeTraining(options), args.prune,
                                           &options.keyframe.importance_prune_share, &prune_choice));
+  }
+  RateWeightChoice rate_choice;
+  if (trains_first && args.keyframe_rate.automatic) {
+    RateWeightArguments rate = args.keyframe_rate;
+    rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
+    M4D_RETURN_IF_ERROR(ResolveRateWeight(
+        capture, options.first_frame, FirstKeyframeTraining(options), rate,
+        options.keyframe_rate_weight, &options.keyframe_rate_weight, &rate_choice));
   }
 
   ProgressBar bar;
@@ -444,7 +450,9 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   const nlohmann::json extra = {
       {"options", EncodeOptionsJson(args)},
       {"prune_share_selection",
-       trains_first ? PruneShareJson(args.prune, prune_choice) : nlohmann::json()}};
+       trains_first ? PruneShareJson(args.prune, prune_choice) : nlohmann::json()},
+      {"rate_weight_selection",
+       trains_first ? RateWeightJson(args.keyframe_rate, rate_choice) : nlohmann::json()}};
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
   M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));
   std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",

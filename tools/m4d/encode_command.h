@@ -14,6 +14,7 @@
 #include "pipeline/encoder_options.h"
 #include "pipeline/frame_report.h"
 #include "prune_share_arguments.h"
+#include "rate_weight_arguments.h"
 #include "train/gaussian_model.h"
 
 namespace m4d {
@@ -37,7 +38,7 @@ struct EncodeArguments {
   std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::vector<int> compensation_bits;   // 6 bit depths (empty: the rate point's)
   std::vector<int> keyframe_codebooks;  // scale, color, sh codebook sizes (empty: the point's)
-  double keyframe_rate_weight = -1;     // lambda_k of keyframe training (< 0: the point's)
+  RateWeightArguments keyframe_rate;    // lambda_k of keyframe training
   std::string output = "out/default.m4d";
   std::string json;   // default: output + ".json"
   std::string views;  // held-out view beside its render, one PNG per frame, here ('' to skip)

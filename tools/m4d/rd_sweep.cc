@@ -52,7 +52,7 @@ KeyframeTrainingOptions SweepKeyframeTraining(const EncodeArguments& args) {
   o.sh_degree = args.encoder.sh_degree;
   o.threads = args.encoder.threads;
   o.seed = args.encoder.seed;
-  o.rate_weight = std::max(0.0, args.keyframe_rate_weight);
+  o.rate_weight = std::max(0.0, args.keyframe_rate.weight);
   std::copy(args.encoder.background, args.encoder.background + 3, o.background);
   return o;
 }
@@ -170,6 +170,12 @@ void AddSweepOutputOptions(CLI::App* cmd, SweepOutput* out) {
 }
 
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
+  if (args->keyframe_rate.automatic) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "--keyframe-rate-weight auto: a sweep shares one keyframe among its rate "
+                  "points; give the weight (m4d train DATASET --keyframe-rate-weight auto prints "
+                  "the one it chooses)");
+  }
   if (!args->keyframe_ply.empty()) return Status::Ok();
   const std::string path = (std::filesystem::path(out.dir) / "keyframe.ply").string();
   // An automatic prune share is chosen once, with the keyframe, and kept beside it for --reuse.

@@ -15,6 +15,7 @@
 #include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
 #include "prune_share_arguments.h"
+#include "rate_weight_arguments.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
 #include "train/view_evaluation.h"
@@ -36,7 +37,7 @@ struct TrainArguments {
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
   int quantization_aware = -1;     // iterations (< 0: the schedule's)
-  double rate_weight = -1;         // lambda_k of the keyframe's rate term (< 0: the point's)
+  RateWeightArguments rate;        // lambda_k of the keyframe's rate term
   std::string rate_point = "r4";   // the keyframe bits the model is trained and coded for
   std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::string ply = "out/keyframe.ply";
@@ -47,7 +48,7 @@ struct TrainArguments {
 Status TrainingRate(const TrainArguments& args, KeyframeTrainingOptions* options) {
   RatePointSettings point;
   M4D_RETURN_IF_ERROR(FindRatePoint(args.rate_point, &point));
-  options->rate_weight = args.rate_weight >= 0 ? args.rate_weight : point.keyframe_rate_weight;
+  options->rate_weight = args.rate.weight >= 0 ? args.rate.weight : point.keyframe_rate_weight;
   GaussianQuantization* quantization = &options->quantization;
   *quantization = point.keyframe;
   if (args.keyframe_bits.size() == 6) {
@@ -108,6 +109,11 @@ Status RunTrain(const TrainArguments& args) {
   PruneShareChoice choice;
   M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, args.frame, options, args.prune,
                                         &options.importance_prune_share, &choice));
+  RateWeightArguments rate = args.rate;
+  rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
+  RateWeightChoice rate_choice;
+  M4D_RETURN_IF_ERROR(ResolveRateWeight(capture, args.frame, options, rate, options.rate_weight,
+                                        &options.rate_weight, &rate_choice));
   const auto start = std::chrono::steady_clock::now();
   ProgressBar bar;
   GaussianModel model;
@@ -179,10 +185,7 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "the last N iterations render the model as coded at the rate point (default: "
                   "a quarter of the run; 0: none)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--keyframe-rate-weight", args->rate_weight,
-                  "lambda_k: while quantization-aware, the loss gains this times the keyframe "
-                  "attributes' bits per 100 kilobits (default: the rate point's, 0)")
-      ->check(CLI::Range(0.0, 1e3));
+  AddRateWeightOption(cmd, &args->rate);
   cmd->add_option("--rate-point", args->rate_point,
                   "the rate point whose keyframe bits the model is trained for (quantization-"
                   "aware) and coded at in the report")

@@ -166,6 +166,9 @@ class KeyframeTrainer {
   // trainer stopped before densify_until continues as a branch with another share
   // (prune_share_selection.h). Copies share the thread pool.
   void SetImportancePruneShare(float share) { options_.importance_prune_share = share; }
+  // The same for the rate weight of quantization-aware iterations still to come
+  // (rate_weight_selection.h).
+  void SetRateWeight(double weight) { options_.rate_weight = weight; }
   // Moves the model out; the trainer needs Init again afterwards.
   GaussianModel TakeModel() {
     rng_.reset();

@@ -7,50 +7,8 @@
 #include <numeric>
 #include <utility>
 
-#include "common/byte_writer.h"
-#include "layers/gaussian_set_writer.h"
-#include "train/view_evaluation.h"
-
 namespace m4d {
 namespace {
-
-int Scaled(int count, double fraction) {
-  if (count <= 0) return count;
-  return std::max(1, static_cast<int>(std::lround(count * fraction)));
-}
-
-// The views not in `held_out` (sorted), and those in it.
-void SplitViews(const TrainingViews& views, const std::vector<int>& held_out, TrainingViews* fit,
-                TrainingViews* validation) {
-  for (int v = 0; v < views.size(); ++v) {
-    const bool out = std::binary_search(held_out.begin(), held_out.end(), v);
-    TrainingViews* into = out ? validation : fit;
-    into->camera_indices.push_back(views.camera_indices[static_cast<size_t>(v)]);
-    into->cameras.push_back(views.cameras[static_cast<size_t>(v)]);
-    into->images.push_back(views.images[static_cast<size_t>(v)]);
-  }
-}
-
-// Runs `trainer` to the end of its schedule and measures the held-out view.
-Status RunBranch(const std::string& run, const TrainingViews& validation,
-                 const SelectionProgress& progress, KeyframeTrainer* trainer,
-                 PruneShareTrial* trial) {
-  M4D_RETURN_IF_ERROR(trainer->Train([&](const TrainingProgress& p) {
-    if (progress) progress(run, p);
-  }));
-  EvaluationResult quality;
-  M4D_RETURN_IF_ERROR(trainer->Evaluate(validation, &quality));
-  trial->share = trainer->options().importance_prune_share;
-  trial->psnr = quality.mean_psnr;
-  trial->gaussians = trainer->model().size();
-  GaussianSet set;
-  M4D_RETURN_IF_ERROR(ModelToGaussianSet(trainer->model(), trainer->model().sh_degree, &set));
-  std::vector<uint8_t> bytes;
-  ByteWriter writer(&bytes);
-  M4D_RETURN_IF_ERROR(WriteGaussianSet(set, trainer->options().quantization, &writer));
-  trial->bytes = bytes.size();
-  return Status::Ok();
-}
 
 std::string ShareRun(float share) {
   char text[32];
@@ -62,10 +20,8 @@ std::string ShareRun(float share) {
 
 double AllowedLoss(const PruneShareTrial& unpruned, const PruneShareTrial& pruned,
                    const PruneShareSelectionOptions& selection) {
-  if (pruned.bytes == 0 || unpruned.bytes <= pruned.bytes) return 0.0;
-  const double halvings =
-      std::log2(static_cast<double>(unpruned.bytes) / static_cast<double>(pruned.bytes));
-  return selection.max_loss_per_halving_db * halvings;
+  return AllowedLoss(static_cast<const BranchResult&>(unpruned),
+                     static_cast<const BranchResult&>(pruned), selection.max_loss_per_halving_db);
 }
 
 std::vector<int> ValidationViews(const std::vector<Camera>& cameras, int count) {
@@ -97,14 +53,15 @@ int HeldOutCount(int views, const PruneShareSelectionOptions& selection) {
 
 KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options, double fraction) {
   KeyframeTrainingOptions o = options;
-  o.iterations = Scaled(options.iterations, fraction);
-  o.learning_rates.position.max_steps = Scaled(options.learning_rates.position.max_steps, fraction);
-  o.densify_from = Scaled(options.densify_from, fraction);
-  o.densify_until = Scaled(options.densify_until, fraction);
-  o.densify_interval = Scaled(options.densify_interval, fraction);
-  o.opacity_reset_interval = Scaled(options.opacity_reset_interval, fraction);
-  o.reset_recovery = Scaled(options.reset_recovery, fraction);
-  o.sh_degree_interval = Scaled(options.sh_degree_interval, fraction);
+  o.iterations = ScaledCount(options.iterations, fraction);
+  o.learning_rates.position.max_steps =
+      ScaledCount(options.learning_rates.position.max_steps, fraction);
+  o.densify_from = ScaledCount(options.densify_from, fraction);
+  o.densify_until = ScaledCount(options.densify_until, fraction);
+  o.densify_interval = ScaledCount(options.densify_interval, fraction);
+  o.opacity_reset_interval = ScaledCount(options.opacity_reset_interval, fraction);
+  o.reset_recovery = ScaledCount(options.reset_recovery, fraction);
+  o.sh_degree_interval = ScaledCount(options.sh_degree_interval, fraction);
   o.quantization_aware_iterations = 0;
   o.importance_prune_share = 0.0f;
   return o;
@@ -136,10 +93,12 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
   }));
   KeyframeTrainer unpruned = trunk;
   M4D_RETURN_IF_ERROR(RunBranch("unpruned", validation, progress, &unpruned, &choice->unpruned));
+  choice->unpruned.share = 0.0f;
   for (float share : selection.shares) {
     KeyframeTrainer branch = trunk;
     branch.SetImportancePruneShare(share);
     PruneShareTrial trial;
+    trial.share = share;
     M4D_RETURN_IF_ERROR(RunBranch(ShareRun(share), validation, progress, &branch, &trial));
     choice->trials.push_back(trial);
     if (choice->unpruned.psnr - trial.psnr <= AllowedLoss(choice->unpruned, trial, selection)) {
@@ -150,19 +109,25 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
   return Status::Ok();
 }
 
+Status LoadSelectionInputs(const Capture& capture, int frame,
+                           const KeyframeTrainingOptions& options,
+                           const PruneShareSelectionOptions& selection, TrainingViews* views,
+                           GaussianModel* initial) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), views));
+  const int held_out_count = HeldOutCount(views->size(), selection);
+  if (held_out_count == 0) return Status::Ok();
+  TrainingViews fit, validation;
+  SplitViews(*views, ValidationViews(views->cameras, held_out_count), &fit, &validation);
+  return InitialKeyframeModel(capture, fit, options, initial);
+}
+
 Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
                         const PruneShareSelectionOptions& selection,
                         const SelectionProgress& progress, PruneShareChoice* choice) {
-  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
   TrainingViews views;
-  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
   GaussianModel initial;
-  const int held_out_count = HeldOutCount(views.size(), selection);
-  if (held_out_count > 0) {
-    TrainingViews fit, validation;
-    SplitViews(views, ValidationViews(views.cameras, held_out_count), &fit, &validation);
-    M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, fit, options, &initial));
-  }
+  M4D_RETURN_IF_ERROR(LoadSelectionInputs(capture, frame, options, selection, &views, &initial));
   return SelectPruneShare(views, initial, options, selection, progress, choice);
 }
 

@@ -25,6 +25,7 @@
 #include "render/camera.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
+#include "train/selection_branch.h"
 #include "train/training_views.h"
 
 namespace m4d {
@@ -44,11 +45,8 @@ struct PruneShareSelectionOptions {
   double schedule_fraction = 0.5;
 };
 
-struct PruneShareTrial {
+struct PruneShareTrial : BranchResult {
   float share = 0;
-  double psnr = 0;  // the held-out training views' mean PSNR after the branch (dB)
-  size_t gaussians = 0;
-  size_t bytes = 0;  // the model coded as a keyframe set
 };
 
 struct PruneShareChoice {
@@ -58,9 +56,6 @@ struct PruneShareChoice {
   PruneShareTrial unpruned;
   std::vector<PruneShareTrial> trials;  // the candidates tried, in order
 };
-
-// Progress of one branch: run is "unpruned" or "share S".
-using SelectionProgress = std::function<void(const std::string& run, const TrainingProgress&)>;
 
 // What `pruned` may lose against `unpruned` (dB): the bound per halving times the halvings of
 // the coded bytes (0 when they did not fall).
@@ -86,6 +81,13 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
                         const KeyframeTrainingOptions& options,
                         const PruneShareSelectionOptions& selection,
                         const SelectionProgress& progress, PruneShareChoice* choice);
+
+// The capture's training views of `frame`, and the initial model built from the views
+// `selection` does not hold out (an empty model when it holds none out).
+Status LoadSelectionInputs(const Capture& capture, int frame,
+                           const KeyframeTrainingOptions& options,
+                           const PruneShareSelectionOptions& selection, TrainingViews* views,
+                           GaussianModel* initial);
 
 // The same from the capture's frame: loads its training views and the initial model.
 Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,

@@ -1,0 +1,55 @@
+#include "train/selection_branch.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/byte_writer.h"
+#include "layers/gaussian_set_writer.h"
+#include "train/view_evaluation.h"
+
+namespace m4d {
+
+double AllowedLoss(const BranchResult& reference, const BranchResult& candidate,
+                   double max_loss_per_halving_db) {
+  if (candidate.bytes == 0 || reference.bytes <= candidate.bytes) return 0.0;
+  const double halvings =
+      std::log2(static_cast<double>(reference.bytes) / static_cast<double>(candidate.bytes));
+  return max_loss_per_halving_db * halvings;
+}
+
+void SplitViews(const TrainingViews& views, const std::vector<int>& held_out, TrainingViews* fit,
+                TrainingViews* validation) {
+  for (int v = 0; v < views.size(); ++v) {
+    const bool out = std::binary_search(held_out.begin(), held_out.end(), v);
+    TrainingViews* into = out ? validation : fit;
+    into->camera_indices.push_back(views.camera_indices[static_cast<size_t>(v)]);
+    into->cameras.push_back(views.cameras[static_cast<size_t>(v)]);
+    into->images.push_back(views.images[static_cast<size_t>(v)]);
+  }
+}
+
+Status RunBranch(const std::string& run, const TrainingViews& validation,
+                 const SelectionProgress& progress, KeyframeTrainer* trainer,
+                 BranchResult* result) {
+  M4D_RETURN_IF_ERROR(trainer->Train([&](const TrainingProgress& p) {
+    if (progress) progress(run, p);
+  }));
+  EvaluationResult quality;
+  M4D_RETURN_IF_ERROR(trainer->Evaluate(validation, &quality));
+  result->psnr = quality.mean_psnr;
+  result->gaussians = trainer->model().size();
+  GaussianSet set;
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(trainer->model(), trainer->model().sh_degree, &set));
+  std::vector<uint8_t> bytes;
+  ByteWriter writer(&bytes);
+  M4D_RETURN_IF_ERROR(WriteGaussianSet(set, trainer->options().quantization, &writer));
+  result->bytes = bytes.size();
+  return Status::Ok();
+}
+
+int ScaledCount(int count, double fraction) {
+  if (count <= 0) return count;
+  return std::max(1, static_cast<int>(std::lround(count * fraction)));
+}
+
+}  // namespace m4d
