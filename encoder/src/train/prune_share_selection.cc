@@ -78,19 +78,12 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
   if (schedule.densify_until <= 1 || schedule.densify_until > schedule.iterations) {
     return Status(M4D_ERR_INVALID_ARG, "prune share selection: the schedule never prunes");
   }
-  const std::vector<int> held_out = ValidationViews(views.cameras, held_out_count);
-  for (int v : held_out) {
-    choice->validation_cameras.push_back(views.camera_indices[static_cast<size_t>(v)]);
-  }
-  TrainingViews fit, validation;
-  SplitViews(views, held_out, &fit, &validation);
-
   // Shared until the iteration before the prune; each branch is a copy from there.
+  TrainingViews validation;
   KeyframeTrainer trunk;
-  M4D_RETURN_IF_ERROR(trunk.Init(schedule, std::move(fit), initial));
-  M4D_RETURN_IF_ERROR(trunk.TrainUntil(schedule.densify_until - 1, [&](const TrainingProgress& p) {
-    if (progress) progress("unpruned", p);
-  }));
+  M4D_RETURN_IF_ERROR(TrainTrunk(views, ValidationViews(views.cameras, held_out_count), initial,
+                                 schedule, schedule.densify_until - 1, "unpruned", progress,
+                                 &choice->validation_cameras, &validation, &trunk));
   KeyframeTrainer unpruned = trunk;
   M4D_RETURN_IF_ERROR(RunBranch("unpruned", validation, progress, &unpruned, &choice->unpruned));
   choice->unpruned.share = 0.0f;

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <string>
-#include <utility>
 
 namespace m4d {
 namespace {
@@ -34,18 +33,11 @@ Status SelectRateWeight(const TrainingViews& views, const GaussianModel& initial
   if (branch_point < 1) {
     return Status(M4D_ERR_INVALID_ARG, "rate weight selection: no iteration before the rate term");
   }
-  const std::vector<int> held_out = ValidationViews(views.cameras, held_out_count);
-  for (int v : held_out) {
-    choice->validation_cameras.push_back(views.camera_indices[static_cast<size_t>(v)]);
-  }
-  TrainingViews fit, validation;
-  SplitViews(views, held_out, &fit, &validation);
-
+  TrainingViews validation;
   KeyframeTrainer trunk;
-  M4D_RETURN_IF_ERROR(trunk.Init(schedule, std::move(fit), initial));
-  M4D_RETURN_IF_ERROR(trunk.TrainUntil(branch_point, [&](const TrainingProgress& p) {
-    if (progress) progress("without rate term", p);
-  }));
+  M4D_RETURN_IF_ERROR(TrainTrunk(views, ValidationViews(views.cameras, held_out_count), initial,
+                                 schedule, branch_point, "without rate term", progress,
+                                 &choice->validation_cameras, &validation, &trunk));
   KeyframeTrainer without = trunk;
   M4D_RETURN_IF_ERROR(
       RunBranch("without rate term", validation, progress, &without, &choice->without));

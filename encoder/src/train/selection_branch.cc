@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "common/byte_writer.h"
 #include "layers/gaussian_set_writer.h"
@@ -26,6 +27,19 @@ void SplitViews(const TrainingViews& views, const std::vector<int>& held_out, Tr
     into->cameras.push_back(views.cameras[static_cast<size_t>(v)]);
     into->images.push_back(views.images[static_cast<size_t>(v)]);
   }
+}
+
+Status TrainTrunk(const TrainingViews& views, const std::vector<int>& held_out,
+                  const GaussianModel& initial, const KeyframeTrainingOptions& schedule,
+                  int branch_point, const std::string& run, const SelectionProgress& progress,
+                  std::vector<int>* cameras, TrainingViews* validation, KeyframeTrainer* trunk) {
+  for (int v : held_out) cameras->push_back(views.camera_indices[static_cast<size_t>(v)]);
+  TrainingViews fit;
+  SplitViews(views, held_out, &fit, validation);
+  M4D_RETURN_IF_ERROR(trunk->Init(schedule, std::move(fit), initial));
+  return trunk->TrainUntil(branch_point, [&](const TrainingProgress& p) {
+    if (progress) progress(run, p);
+  });
 }
 
 Status RunBranch(const std::string& run, const TrainingViews& validation,

@@ -35,6 +35,14 @@ double AllowedLoss(const BranchResult& reference, const BranchResult& candidate,
 void SplitViews(const TrainingViews& views, const std::vector<int>& held_out, TrainingViews* fit,
                 TrainingViews* validation);
 
+// The trunk every branch copies: holds the views `held_out` (indices into `views`, sorted) out,
+// records their capture indices in `cameras`, and trains `initial` with `schedule` on the
+// others up to iteration `branch_point` (progress named `run`).
+Status TrainTrunk(const TrainingViews& views, const std::vector<int>& held_out,
+                  const GaussianModel& initial, const KeyframeTrainingOptions& schedule,
+                  int branch_point, const std::string& run, const SelectionProgress& progress,
+                  std::vector<int>* cameras, TrainingViews* validation, KeyframeTrainer* trunk);
+
 // Runs `trainer` to the end of its schedule and measures it on `validation`.
 Status RunBranch(const std::string& run, const TrainingViews& validation,
                  const SelectionProgress& progress, KeyframeTrainer* trainer, BranchResult* result);
