@@ -85,8 +85,9 @@ bool CodeAdaptiveAttributes(Coder* coder, const AdaptiveField* fields, int num_f
     const size_t c = static_cast<size_t>(field.components);
     for (uint32_t i = 0; i < count; ++i) {
       uint32_t* q = field.q + i * c;
+      const uint32_t* previous = i > 0 ? q - c : nullptr;  // the previous Gaussian's values
       for (size_t r = 0; r < c; ++r) {
-        uint32_t context = i > 0 ? (q[r - c] >> shift) * own_contexts : 0;
+        uint32_t context = previous != nullptr ? (previous[r] >> shift) * own_contexts : 0;
         if (field.own_context && r > 0) context += q[r - 1] >> shift;
         BitProbability* tree = model->Tree(f, static_cast<int>(r), context);
         q[r] = CodeAdaptiveValue(coder, tree, field.width, q[r]);
