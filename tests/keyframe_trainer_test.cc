@@ -15,7 +15,6 @@
 #include "common/byte_writer.h"
 #include "dataset/capture.h"
 #include "layers/gaussian_set_writer.h"
-#include "layers/log_scale_floor.h"
 #include "metrics/photometric_loss.h"
 #include "render/splat_renderer.h"
 #include "splat_test_scenes.h"
@@ -281,27 +280,6 @@ TEST(KeyframeTrainerTest, FrozenGaussiansStayExactlyAsGiven) {
   }
   options.frozen_gaussians = start.size() + 1;
   EXPECT_EQ(trainer.Init(options, train, start).code(), M4D_ERR_INVALID_ARG);
-}
-
-// Quantization-aware training codes log scales with the views' floor unless given one.
-TEST(KeyframeTrainerTest, QuantizesAtTheViewsLogScaleFloor) {
-  const Scene scene = MakeScene();
-  TrainingViews train;
-  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, scene.capture.TrainCameras(), &train).ok());
-  GaussianModel initial;
-  ASSERT_TRUE(
-      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), &initial)
-          .ok());
-  KeyframeTrainingOptions options = TestOptions();
-  KeyframeTrainer trainer;
-  ASSERT_TRUE(trainer.Init(options, train, initial).ok());
-  const float floor = LogScaleFloor(train.cameras);
-  ASSERT_TRUE(std::isfinite(floor));
-  EXPECT_EQ(trainer.options().quantization.log_scale_floor, floor);
-  EXPECT_EQ(TrainingLogScaleFloor(scene.capture, 0), floor);
-  options.quantization.log_scale_floor = floor - 1.0f;
-  ASSERT_TRUE(trainer.Init(options, train, initial).ok());
-  EXPECT_EQ(trainer.options().quantization.log_scale_floor, floor - 1.0f);
 }
 
 // The keyframe rate term (keyframe_rate_term.h) during quantization-aware iterations: the

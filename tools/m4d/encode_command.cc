@@ -10,7 +10,6 @@
 
 #include "command_status.h"
 #include "io/atomic_file.h"
-#include "layers/log_scale_floor.h"
 #include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
@@ -376,8 +375,6 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
   M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
   M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
-  // The selections below train at the floor the encoder will code with.
-  options.quantization.log_scale_floor = TrainingLogScaleFloor(capture, options.first_frame);
   // An automatic share needs the first keyframe's training; a given keyframe has none.
   PruneShareChoice prune_choice;
   const bool trains_first = args.keyframe_ply.empty() && !args.keyframe_source;

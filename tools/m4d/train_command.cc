@@ -12,7 +12,6 @@
 #include "common/byte_writer.h"
 #include "image/png_io.h"
 #include "layers/gaussian_set_writer.h"
-#include "layers/log_scale_floor.h"
 #include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
 #include "prune_share_arguments.h"
@@ -105,7 +104,6 @@ Status RunTrain(const TrainArguments& args) {
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
   M4D_RETURN_IF_ERROR(TrainingRate(args, &options));
-  options.quantization.log_scale_floor = TrainingLogScaleFloor(capture, args.frame);
   options.threads = args.threads;
   options.seed = args.seed;
   PruneShareChoice choice;

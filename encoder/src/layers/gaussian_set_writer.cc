@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,7 +36,6 @@ struct GroupPlan {
   int components = 0;
   const float* source = nullptr;  // component r of Gaussian i at source[i * stride + r]
   size_t stride = 0;
-  float floor = -std::numeric_limits<float>::infinity();  // values below code as this
   int bits = 0;
   bool per_component = false;
   std::vector<float> min, step;  // one pair per component, or one for all
@@ -190,8 +188,7 @@ void PlanSmallestThree(const GaussianSet& set, GroupPlan* rotation, GroupPlan* i
 // other groups share one step across components, which gives every component the same
 // absolute error (the lowest total squared error for the rate), some with a level at zero
 // (the largest value may then clamp, by at most half a step more). A group whose components are
-// each constant costs nothing: bits 0 and one min per component. Values below the plan's floor
-// count as the floor (Quantize clamps them to level 0).
+// each constant costs nothing: bits 0 and one min per component.
 Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
   M4D_RETURN_IF_ERROR(CheckFinite(n, *plan));
   const int c = plan->components;
@@ -203,8 +200,8 @@ Status PlanQuantization(size_t n, int requested_bits, GroupPlan* plan) {
       a = std::min(a, v);
       b = std::max(b, v);
     }
-    lo[r] = std::max(a, plan->floor);
-    hi[r] = std::max(b, plan->floor);
+    lo[r] = a;
+    hi[r] = b;
   }
   bool constant = true;
   for (int r = 0; r < c; ++r) constant = constant && lo[r] == hi[r];
@@ -393,7 +390,6 @@ Status PlanGroups(const GaussianSet& set, const GaussianQuantization& quantizati
     plan.components = GaussianGroupComponents(group, set.sh_degree);
     if (plan.components == 0) continue;
     SetSource(set, &plan);
-    if (group == kGroupLogScale) plan.floor = quantization.log_scale_floor;
     const int bits = RequestedBits(group, quantization);
     const bool split = group == kGroupRotation && smallest_three;
     if (split) {
@@ -465,7 +461,6 @@ Status PlanScalar(size_t n, int bits, const GroupPlan& like, GroupPlan* plan) {
   plan->components = like.components;
   plan->source = like.source;
   plan->stride = like.stride;
-  plan->floor = like.floor;
   return PlanQuantization(n, bits, plan);
 }
 

@@ -3,8 +3,6 @@
 #ifndef M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
 #define M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
 
-#include <limits>
-
 #include "common/byte_writer.h"
 #include "common/status.h"
 #include "layers/gaussian_set.h"
@@ -26,10 +24,6 @@ struct GaussianQuantization {
   int opacity_bits = 8;
   int sh_dc_bits = 8;
   int sh_rest_bits = 5;
-  // Log scales below this are coded as this value, so that the thinnest axes, which draw as
-  // the renderer's dilation alone, do not stretch the group's range (-inf: none; the encoder
-  // sets it from the cameras, log_scale_floor.h).
-  float log_scale_floor = -std::numeric_limits<float>::infinity();
   // Draco encoder speed 0 (best) .. 10 (fastest); always the sequential method (spec 5.5).
   int draco_speed = 5;
   // Codebook sizes (0: scalar values; spec 5.4, version 0.6). A group with a size K > 0 is

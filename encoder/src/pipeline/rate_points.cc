@@ -64,24 +64,18 @@ const std::vector<RatePointSettings>& RatePoints() {
   //    0.1 % (r2), at +0.04 and -0.01 dB; r4 with 256 entries 7.4 % and 5.4 % at -0.03 and
   //    0.00 dB. 1024 DC entries at r2's 6 bits lose 0.15 dB on the default scene, scale
   //    codebooks 0.7 dB at r1; at r5's bits the writer keeps no codebook;
-  //  - keyframe log scales start at the floor the views can show (log_scale_floor.h): their
-  //    range shrinks from -16.2..-0.8 to -6.7..-0.8 on the default scene, so each point takes
-  //    one scale bit fewer (r1 keeps 5, where the floor alone gains 0.23 dB after
-  //    quantization-aware training) for a finer step than before; on the 0.7 sweep's keyframe
-  //    r2-r4 take 1.0 % fewer bytes at 0.00-0.03 dB more, r5 4.8 %. r1's keyframe codes
-  //    positions at 11 bits and rotations at 5 (see the README's "Log-scale floor");
   //  - tau_g = 1e-3 instead of 5e-4 replicates 102 Gaussians instead of 351 for 0.02 to
   //    0.06 dB: most replicas refine what the moved set already shows.
   static const std::vector<RatePointSettings> kPoints = {
-      Point("r1", 5e-4, 4e-3f, Codebooks(Bits(11, 5, 5, 5, 5, 3), 0, 1024, 16),
+      Point("r1", 5e-4, 4e-3f, Codebooks(Bits(12, 5, 6, 5, 5, 3), 0, 1024, 16),
             Bits(11, 5, 6, 5, 5, 3)),
-      Point("r2", 3e-4, 2e-3f, Codebooks(Bits(13, 5, 7, 6, 6, 3), 0, 0, 64),
+      Point("r2", 3e-4, 2e-3f, Codebooks(Bits(13, 6, 7, 6, 6, 3), 0, 0, 64),
             Bits(12, 6, 7, 6, 6, 3)),
-      Point("r3", 2e-4, 1e-3f, Codebooks(Bits(14, 6, 7, 7, 7, 3), 0, 0, 64),
+      Point("r3", 2e-4, 1e-3f, Codebooks(Bits(14, 7, 7, 7, 7, 3), 0, 0, 64),
             Bits(12, 6, 7, 6, 6, 3)),
-      Point("r4", 1e-4, 7e-4f, Codebooks(Bits(14, 6, 7, 7, 7, 4), 0, 0, 256),
+      Point("r4", 1e-4, 7e-4f, Codebooks(Bits(14, 7, 7, 7, 7, 4), 0, 0, 256),
             Bits(13, 7, 8, 7, 7, 3)),
-      Point("r5", 5e-5, 5e-4f, Bits(16, 7, 9, 8, 8, 5), Bits(14, 7, 8, 7, 7, 4)),
+      Point("r5", 5e-5, 5e-4f, Bits(16, 8, 9, 8, 8, 5), Bits(14, 7, 8, 7, 7, 4)),
   };
   return kPoints;
 }

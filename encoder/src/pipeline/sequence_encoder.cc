@@ -16,7 +16,6 @@
 #include "decoupling/lookahead_decoupling.h"
 #include "decoupling/temporal_change.h"
 #include "layers/gaussian_set_writer.h"
-#include "layers/log_scale_floor.h"
 #include "layers/mlp_writer.h"
 #include "layers/motion_grid.h"
 #include "layers/motion_grid_writer.h"
@@ -216,10 +215,6 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
                          ? std::min(options_.frame_count, capture_.frame_count - first)
                          : capture_.frame_count - first;
   last_frame_ = first + frames - 1;
-  // Every set's log scales stop at the thinnest axis the first frame's views can show.
-  const float floor = TrainingLogScaleFloor(capture_, first);
-  options_.quantization.log_scale_floor = floor;
-  options_.compensation_quantization.log_scale_floor = floor;
   callbacks_ = callbacks;
   report_ = report;
   *report = SequenceReport();

@@ -7,7 +7,6 @@
 #include <string>
 #include <utility>
 
-#include "layers/log_scale_floor.h"
 #include "metrics/psnr.h"
 #include "render/splat_renderer.h"
 #include "train/gaussian_optimizer.h"
@@ -158,9 +157,6 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   options_ = options;
   options_.densification.max_gaussians = GaussianCap(options, views);
   options_.densification.frozen = options.frozen_gaussians;
-  if (std::isinf(options_.quantization.log_scale_floor)) {
-    options_.quantization.log_scale_floor = LogScaleFloor(views.cameras);
-  }
   scene_extent_ =
       options.scene_extent > 0.0f ? options.scene_extent : CameraSceneBounds(views.cameras).extent;
   if (!(scene_extent_ > 0.0f)) {

@@ -79,7 +79,6 @@ struct KeyframeTrainingOptions {
   // The first this many Gaussians of the initial model stay exactly as given (a dependent
   // keyframe's kept static set): no step, never split or pruned (their clones are free).
   size_t frozen_gaussians = 0;
-  // Without a log-scale floor (-inf), Init sets the views' (log_scale_floor.h).
   GaussianQuantization quantization;
   int densify_from = 500;     // densify only after this iteration
   int densify_until = 15000;  // statistics, densification and resets before it (0: none)
