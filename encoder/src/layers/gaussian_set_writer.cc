@@ -25,6 +25,7 @@
 #include "layers/codebook.h"
 #include "layers/gaussian_set_reader.h"
 #include "layers/octree_position_writer.h"
+#include "layers/rotation_symmetry.h"
 #include "layers/smallest_three.h"
 
 namespace m4d {
@@ -589,10 +590,16 @@ Status WriteCodebook(const GroupPlan& plan, RansLayout layout, ByteWriter* out) 
   return WriteSymbolBlock(entries.data(), entries.size(), layout, out);
 }
 
-}  // namespace
+// Whether the set's rotations are coded in their canonical form (a set whose arrays do not
+// match its count is left to PlanGroups to refuse).
+bool CodesCanonicalRotations(const GaussianSet& set, const GaussianQuantization& quantization) {
+  const size_t n = set.size();
+  return quantization.canonical_rotations &&
+         quantization.syntax.rotation == RotationCoding::kSmallestThree &&
+         set.rotations.size() == 4 * n && set.log_scales.size() == 3 * n;
+}
 
-Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
-                        ByteWriter* out) {
+Status WriteSet(const GaussianSet& set, const GaussianQuantization& quantization, ByteWriter* out) {
   std::vector<GroupPlan> plans;
   M4D_RETURN_IF_ERROR(PlanGroups(set, quantization, true, &plans));
   const size_t n = set.size();
@@ -657,11 +664,8 @@ Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quan
   return Status::Ok();
 }
 
-}  // namespace m4d
-
-namespace m4d {
-
-Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set) {
+// QuantizeGaussianSet on the set's rotations as they are.
+Status QuantizeValues(const GaussianQuantization& quantization, GaussianSet* set) {
   std::vector<GroupPlan> plans;
   M4D_RETURN_IF_ERROR(PlanGroups(*set, quantization, false, &plans));
   std::vector<uint32_t> order(set->size());
@@ -695,6 +699,26 @@ Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet
                            &set->rotations[4 * i]);
     }
   }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status WriteGaussianSet(const GaussianSet& set, const GaussianQuantization& quantization,
+                        ByteWriter* out) {
+  if (!CodesCanonicalRotations(set, quantization)) return WriteSet(set, quantization, out);
+  GaussianSet canonical = set;
+  CanonicalizeRotations(&canonical, nullptr);
+  return WriteSet(canonical, quantization, out);
+}
+
+Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set) {
+  if (!CodesCanonicalRotations(*set, quantization)) return QuantizeValues(quantization, set);
+  const std::vector<float> original(set->rotations.begin(), set->rotations.end());
+  std::vector<uint8_t> applied;
+  CanonicalizeRotations(set, &applied);
+  M4D_RETURN_IF_ERROR(QuantizeValues(quantization, set));
+  RestoreRotationAxes(applied, original.data(), set);
   return Status::Ok();
 }
 

@@ -38,6 +38,11 @@ struct GaussianQuantization {
   // for streams that must exercise codebooks).
   bool codebooks_only_where_they_pay = true;
   AttributeCoding attribute_coding = AttributeCoding::kSmaller;
+  // Smallest-three rotations: code each Gaussian's rotation as the equivalent one nearest the
+  // identity, its scales permuted to match (layers/rotation_symmetry.h); the decoder then
+  // draws the same Gaussian from a narrower range of rotations (false: the rotations as given,
+  // for tests that compare them component by component).
+  bool canonical_rotations = true;
   // The stream version's (SequenceHeader::gaussian_set_syntax): the newest by default.
   GaussianSetSyntax syntax;
 };
@@ -62,8 +67,10 @@ Status ReconstructGaussianSet(const GaussianSet& set, const GaussianQuantization
 
 // Replaces every value of `set` by the one a decoder reconstructs from WriteGaussianSet's
 // output (same ranges and rounding; the set keeps its order), without coding it: the
-// forward pass of quantization-aware training. Codebook groups are quantized with their scalar
-// bits instead: a k-means per training step would cost more than the step.
+// forward pass of quantization-aware training. With canonical rotations, each Gaussian keeps its
+// own axis order and quaternion sign (the decoder's rotation and scales, brought back to them),
+// so that the training's gradients stay those of its own parameters. Codebook groups are quantized
+// with their scalar bits instead: a k-means per training step would cost more than the step.
 Status QuantizeGaussianSet(const GaussianQuantization& quantization, GaussianSet* set);
 
 }  // namespace m4d
