@@ -44,14 +44,6 @@ GaussianSet RandomSet(size_t n, int sh_degree, uint32_t seed) {
   return set;
 }
 
-// The rotations as given, not in their canonical form: these tests compare the coded components
-// with the set's own.
-GaussianQuantization AsGiven() {
-  GaussianQuantization q;
-  q.canonical_rotations = false;
-  return q;
-}
-
 // Opacity carries the Gaussian's index exactly (24 bits, index < 2^23), so that decoded
 // Gaussians can be matched to the originals whatever order the coding chose.
 GaussianQuantization WithIds(GaussianQuantization q) {
@@ -188,7 +180,7 @@ GaussianQuantization FourComponents(GaussianQuantization q) {
 }
 
 // Version 0.6's syntax: positions are Draco's first attribute (for the Draco payload's tests).
-GaussianQuantization PositionsInDraco(GaussianQuantization q = AsGiven()) {
+GaussianQuantization PositionsInDraco(GaussianQuantization q = GaussianQuantization()) {
   q.syntax = SyntaxOf(kThree, false);
   return q;
 }
@@ -315,8 +307,8 @@ TEST(GaussianSetCodingTest, RoundTripsEveryShDegree) {
     SCOPED_TRACE(degree);
     GaussianSet set = RandomSet(3000, degree, 10 + degree);
     SetIds(&set);
-    RoundTrip(set, WithIds(AsGiven()));
-    RoundTrip(set, WithIds(FourComponents(AsGiven())));
+    RoundTrip(set, WithIds(GaussianQuantization()));
+    RoundTrip(set, WithIds(FourComponents(GaussianQuantization())));
   }
 }
 
@@ -325,7 +317,7 @@ TEST(GaussianSetCodingTest, RoundTripsEveryBitWidthAndSpeed) {
   SetIds(&set);
   for (int bits : {1, 2, 7, 8, 9, 15, 16, 17, 23, 24}) {
     SCOPED_TRACE(bits);
-    GaussianQuantization q = AsGiven();
+    GaussianQuantization q;
     q.position_bits = q.log_scale_bits = q.rotation_bits = q.sh_dc_bits = q.sh_rest_bits = bits;
     q.draco_speed = bits % 11;
     RoundTrip(set, WithIds(q));
@@ -337,7 +329,7 @@ TEST(GaussianSetCodingTest, DefaultQuantizationRoundTrips) {
   // Without ids: compare each component's values as a multiset.
   // Four-component rotations, whose values are each quantized on their own.
   const GaussianSet set = RandomSet(2000, 3, 3);
-  const std::vector<uint8_t> bytes = WriteSet(set, FourComponents(AsGiven()));
+  const std::vector<uint8_t> bytes = WriteSet(set, FourComponents(GaussianQuantization()));
   GaussianSet decoded;
   ASSERT_TRUE(Read(bytes, 3, &decoded, kMaxGaussiansPerSet, kFour).ok());
   const ParsedSet p = Parse(bytes, 3, kFour);
@@ -370,7 +362,7 @@ TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
       SCOPED_TRACE(degree);
       GaussianSet set = RandomSet(1500, degree, 20 + degree);
       SetIds(&set);
-      GaussianQuantization q = WithIds(AsGiven());
+      GaussianQuantization q = WithIds(GaussianQuantization());
       q.syntax = SyntaxOf(rotation);
       q.sh_rest_bits = 3;
       for (size_t i = 0; i < 10; ++i) set.sh[i * set.sh_floats() + 3] = 0.0f;  // a group's zeros
@@ -397,13 +389,13 @@ TEST(GaussianSetCodingTest, QuantizeGivesTheDecodedValuesInTheSetsOrder) {
   }
   GaussianSet bad = RandomSet(10, 1, 1);
   bad.positions.pop_back();
-  EXPECT_EQ(QuantizeGaussianSet(AsGiven(), &bad).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(QuantizeGaussianSet(GaussianQuantization(), &bad).code(), M4D_ERR_INVALID_ARG);
 }
 
 TEST(GaussianSetCodingTest, EmptySetIsOneByte) {
   GaussianSet set;
   set.sh_degree = 2;
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(bytes, std::vector<uint8_t>{0});
   GaussianSet decoded = RandomSet(5, 1, 1);
   ASSERT_TRUE(Read(bytes, 2, &decoded).ok());
@@ -416,7 +408,7 @@ TEST(GaussianSetCodingTest, SingleGaussian) {
   for (int degree = 0; degree <= 3; ++degree) {
     GaussianSet set = RandomSet(1, degree, 5);
     SetIds(&set);
-    RoundTrip(set, WithIds(AsGiven()));
+    RoundTrip(set, WithIds(GaussianQuantization()));
   }
 }
 
@@ -429,7 +421,7 @@ TEST(GaussianSetCodingTest, ConstantGroupsCostNothing) {
     for (int r = 0; r < 24; ++r) Component(set, kGroupShRest, i, r) = -0.0f;
     set.log_scales[3 * i + 1] = -3;  // one constant component of a varying group
   }
-  const std::vector<uint8_t> bytes = WriteSet(set, WithIds(AsGiven()));
+  const std::vector<uint8_t> bytes = WriteSet(set, WithIds(GaussianQuantization()));
   const ParsedSet p = Parse(bytes, 2);
   EXPECT_EQ(p.groups[kGroupRotation].bits, 0);
   EXPECT_EQ(p.groups[kGroupShRest].bits, 0);
@@ -451,7 +443,7 @@ TEST(GaussianSetCodingTest, AllGroupsConstant) {
       }
     }
   }
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   GaussianSet decoded;
   const Status status = Read(bytes, 1, &decoded);
   ASSERT_TRUE(status.ok()) << status.message();
@@ -462,26 +454,26 @@ TEST(GaussianSetCodingTest, AllGroupsConstant) {
 TEST(GaussianSetCodingTest, LargeSetRoundTrips) {
   GaussianSet set = RandomSet(100000, 3, 99);
   SetIds(&set);
-  RoundTrip(set, WithIds(AsGiven()));
+  RoundTrip(set, WithIds(GaussianQuantization()));
 }
 
 TEST(GaussianSetCodingTest, WritingIsDeterministic) {
   const GaussianSet set = RandomSet(1000, 1, 4);
-  EXPECT_EQ(WriteSet(set, AsGiven()), WriteSet(set, AsGiven()));
+  EXPECT_EQ(WriteSet(set, GaussianQuantization()), WriteSet(set, GaussianQuantization()));
 }
 
 TEST(GaussianSetCodingTest, WriterRejectsBadInput) {
   GaussianSet set = RandomSet(10, 1, 4);
   std::vector<uint8_t> bytes;
   ByteWriter w(&bytes);
-  GaussianQuantization q = AsGiven();
+  GaussianQuantization q;
   q.sh_rest_bits = 25;
   EXPECT_EQ(WriteGaussianSet(set, q, &w).code(), M4D_ERR_INVALID_ARG);
   set.log_scales[4] = std::numeric_limits<float>::infinity();
-  EXPECT_EQ(WriteGaussianSet(set, AsGiven(), &w).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(WriteGaussianSet(set, GaussianQuantization(), &w).code(), M4D_ERR_INVALID_ARG);
   set.log_scales[4] = -1;
   set.sh.pop_back();
-  EXPECT_EQ(WriteGaussianSet(set, AsGiven(), &w).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(WriteGaussianSet(set, GaussianQuantization(), &w).code(), M4D_ERR_INVALID_ARG);
 }
 
 // Decodes a Draco payload with Draco itself.
@@ -512,7 +504,7 @@ TEST(GaussianSetCodingTest, RejectsKdTreePayloads) {
   // Spec 5.5 allows Draco's sequential method only; a valid kd-tree stream of the same
   // points is refused before Draco decodes it.
   GaussianSet set = RandomSet(2000, 1, 21);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -526,7 +518,7 @@ TEST(GaussianSetCodingTest, RejectsKdTreePayloads) {
 
 TEST(GaussianSetCodingTest, RejectsEveryTruncation) {
   GaussianSet set = RandomSet(40, 1, 8);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   for (size_t size = 0; size < bytes.size(); ++size) {
     const std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + size);
     GaussianSet decoded;
@@ -561,7 +553,7 @@ TEST(GaussianSetCodingTest, RejectsEveryTruncation) {
 
 TEST(GaussianSetCodingTest, RejectsBadQuantizationParameters) {
   GaussianSet set = RandomSet(30, 1, 9);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   auto expect_error = [&](size_t offset, const void* patch, size_t size) {
     std::vector<uint8_t> bad = bytes;
@@ -584,7 +576,7 @@ TEST(GaussianSetCodingTest, RejectsBadQuantizationParameters) {
 
 TEST(GaussianSetCodingTest, RejectsCountsAboveTheLimitBeforeAllocating) {
   const GaussianSet set = RandomSet(50, 0, 10);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   GaussianSet decoded;
   EXPECT_EQ(Read(bytes, 0, &decoded, 49).code(), M4D_ERR_LIMIT);
   EXPECT_TRUE(Read(bytes, 0, &decoded, 50).ok());
@@ -601,7 +593,7 @@ TEST(GaussianSetCodingTest, RejectsCountsAboveTheLimitBeforeAllocating) {
 
 TEST(GaussianSetCodingTest, RejectsBadDracoSize) {
   const GaussianSet set = RandomSet(20, 0, 12);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 0);
   GaussianSet decoded;
   EXPECT_EQ(Read(Reassemble(bytes, p, p.count, {}), 0, &decoded).code(), M4D_ERR_BITSTREAM);
@@ -618,7 +610,7 @@ TEST(GaussianSetCodingTest, RejectsBadDracoSize) {
 
 TEST(GaussianSetCodingTest, RejectsMismatchingPointCounts) {
   const GaussianSet set = RandomSet(64, 1, 13);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -681,7 +673,7 @@ std::vector<uint8_t> EditedPayload(const ParsedSet& p, int method, int predictio
 
 TEST(GaussianSetCodingTest, RejectsAttributesNotMatchingTheGroups) {
   GaussianSet set = RandomSet(80, 1, 14);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   {
     const int method = draco::POINT_CLOUD_SEQUENTIAL_ENCODING;
@@ -719,7 +711,7 @@ TEST(GaussianSetCodingTest, RejectsAttributesNotMatchingTheGroups) {
 
 TEST(GaussianSetCodingTest, RejectsValuesNotBelowTwoToTheBits) {
   GaussianSet set = RandomSet(80, 0, 15);
-  GaussianQuantization q = AsGiven();
+  GaussianQuantization q;
   q.opacity_bits = 7;  // an 8-bit Draco type holding 7-bit values
   const std::vector<uint8_t> bytes = WriteSet(set, q);
   const ParsedSet p = Parse(bytes, 0);
@@ -791,7 +783,7 @@ TEST(GaussianSetCodingTest, RejectsHugeSymbolTablesBeforeDraco) {
 
 TEST(GaussianSetCodingTest, SurvivesFlippedBytesInTheDracoPayload) {
   GaussianSet set = RandomSet(60, 1, 18);
-  const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   const std::vector<uint8_t> kd_tree = DracoEncode(
       *DracoDecode(p.draco), draco::POINT_CLOUD_KD_TREE_ENCODING, draco::PREDICTION_NONE);
@@ -819,7 +811,7 @@ TEST(GaussianSetCodingTest, SurvivesFlippedBytesInTheDracoPayload) {
 TEST(GaussianSetCodingTest, SmallestThreeKeepsTheRotationInFewerBytes) {
   GaussianSet set = RandomSet(5000, 1, 41);
   SetIds(&set);
-  GaussianQuantization q = WithIds(AsGiven());
+  GaussianQuantization q = WithIds(GaussianQuantization());
   const std::vector<uint8_t> three = WriteSet(set, q);
   const std::vector<uint8_t> four = WriteSet(set, FourComponents(q));
   EXPECT_LT(three.size() + 5000 / 8, four.size());  // at least a bit per Gaussian
@@ -854,6 +846,7 @@ TEST(GaussianSetCodingTest, CanonicalRotationsTakeOneBitLessForTheSameShapes) {
   for (float& v : set.log_scales) v = v / 4 - 2;  // no axis far below the scales' step
   SetIds(&set);
   GaussianQuantization canonical = WithIds(GaussianQuantization());
+  canonical.canonical_rotations = true;
   canonical.log_scale_bits = 12;
   canonical.rotation_bits = 5;
   GaussianQuantization given = canonical;
@@ -878,7 +871,8 @@ TEST(GaussianSetCodingTest, CanonicalRotationsTakeOneBitLessForTheSameShapes) {
 TEST(GaussianSetCodingTest, QuantizeKeepsEachGaussiansAxesWithCanonicalRotations) {
   GaussianSet set = RandomSet(2000, 1, 44);
   SetIds(&set);
-  const GaussianQuantization q = WithIds(GaussianQuantization());
+  GaussianQuantization q = WithIds(GaussianQuantization());
+  q.canonical_rotations = true;
   GaussianSet decoded, quantized = set;
   ASSERT_TRUE(ReconstructGaussianSet(set, q, &decoded).ok());
   ASSERT_TRUE(QuantizeGaussianSet(q, &quantized).ok());
@@ -891,8 +885,9 @@ TEST(GaussianSetCodingTest, QuantizeKeepsEachGaussiansAxesWithCanonicalRotations
         << i;
     // ...in the set's own parameters: its axis order and its quaternion's sign.
     double dot = 0.0;
-    for (int c = 0; c < 4; ++c)
+    for (int c = 0; c < 4; ++c) {
       dot += double{quantized.rotations[4 * i + c]} * set.rotations[4 * i + c];
+    }
     EXPECT_GT(dot, 0.0) << i;
     for (int r = 0; r < 3; ++r) {
       EXPECT_NEAR(quantized.log_scales[3 * i + r], set.log_scales[3 * i + r], 0.02) << i;
@@ -910,7 +905,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
     const float turned[4] = {0, -2, 0, 0};
     std::memcpy(&set.rotations[4 * i], turned, sizeof(turned));
   }
-  std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+  std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   GaussianSet decoded;
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
@@ -921,7 +916,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
     const float identity[4] = {1, 0, 0, 0};
     std::memcpy(&set.rotations[4 * i], identity, sizeof(identity));
   }
-  bytes = WriteSet(set, WithIds(AsGiven()));
+  bytes = WriteSet(set, WithIds(GaussianQuantization()));
   EXPECT_GT(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
   for (size_t j = 0; j < set.size(); ++j) {
@@ -930,7 +925,7 @@ TEST(GaussianSetCodingTest, SmallestThreeOfConstantAndDegenerateRotations) {
                     i % 2 == 0 ? std::vector<float>{1, 0, 0, 0} : std::vector<float>{0, 1, 0, 0});
   }
   std::fill(set.rotations.begin(), set.rotations.end(), 0.0f);  // no rotation: the identity
-  bytes = WriteSet(set, AsGiven());
+  bytes = WriteSet(set, GaussianQuantization());
   EXPECT_EQ(Parse(bytes, 0).groups[kGroupRotation].bits, 0);
   ASSERT_TRUE(Read(bytes, 0, &decoded).ok());
   expect_rotation(decoded, 0, {1, 0, 0, 0});
@@ -1006,7 +1001,7 @@ TEST(GaussianSetCodingTest, PositionsAreAnOctreeWhereThatIsSmaller) {
       set.positions[3 * i + 1] = y;
       set.positions[3 * i + 2] = 0.2f * std::sin(3.0f * x) * std::cos(2.0f * y);
     }
-    const std::vector<uint8_t> bytes = WriteSet(set, AsGiven());
+    const std::vector<uint8_t> bytes = WriteSet(set, GaussianQuantization());
     const std::vector<uint8_t> v06 = WriteSet(set, PositionsInDraco());
     const ParsedSet p = Parse(bytes, 1);
     EXPECT_EQ(p.octree, n > 40) << n;
@@ -1021,7 +1016,7 @@ TEST(GaussianSetCodingTest, PositionsAreAnOctreeWhereThatIsSmaller) {
     EXPECT_EQ(decoded.sh, decoded_v06.sh) << n;
   }
   // A flag other than 0 or 1.
-  const std::vector<uint8_t> bytes = WriteSet(RandomSet(40, 1, 8), AsGiven());
+  const std::vector<uint8_t> bytes = WriteSet(RandomSet(40, 1, 8), GaussianQuantization());
   const ParsedSet p = Parse(bytes, 1);
   std::vector<uint8_t> bad = bytes;
   bad[p.draco_size_offset - 1] = 2;

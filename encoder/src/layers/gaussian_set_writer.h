@@ -40,9 +40,9 @@ struct GaussianQuantization {
   AttributeCoding attribute_coding = AttributeCoding::kSmaller;
   // Smallest-three rotations: code each Gaussian's rotation as the equivalent one nearest the
   // identity, its scales permuted to match (layers/rotation_symmetry.h); the decoder then
-  // draws the same Gaussian from a narrower range of rotations (false: the rotations as given,
-  // for tests that compare them component by component).
-  bool canonical_rotations = true;
+  // draws the same Gaussian from a narrower range of rotations, so one bit fewer gives about
+  // the same step. Off by default (the rotations as given); rate point r1 turns it on.
+  bool canonical_rotations = false;
   // The stream version's (SequenceHeader::gaussian_set_syntax): the newest by default.
   GaussianSetSyntax syntax;
 };
