@@ -57,7 +57,7 @@ TEST(RatePoints, ApplySetsWhatThePointSteers) {
   ApplyRatePoint(p, &options);
   EXPECT_EQ(options.motion.rate_weight, 5e-4);
   EXPECT_EQ(options.compensation_thresholds.gradient, p.replication_gradient);
-  EXPECT_EQ(QuantizationName(options.quantization), "11/5/4/5/5/3 codebooks 0/1024/16");
+  EXPECT_EQ(QuantizationName(options.quantization), "10/5/4/5/5/3 codebooks 0/1024/2");
   EXPECT_EQ(QuantizationName(options.compensation_quantization), QuantizationName(p.compensation));
 }
 
