@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libpng-dev libjpeg-dev zlib1g-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev gnuplot-nox
+  openmpi-bin libopenmpi-dev
   emscripten dpkg-dev chromium
 )
 

@@ -63,6 +63,7 @@ struct Gradients {
   std::vector<std::vector<float>> positions, log_scales, rotations, logits, sh;
   std::vector<float> mean2d;
   std::vector<LayerGradients> views;
+  bool with_mean2d = true;
 
   explicit Gradients(const std::vector<GaussianSet>& sets) {
     size_t total = 0;
@@ -90,7 +91,7 @@ struct Gradients {
     SplatGradients out;
     out.layers = views.data();
     out.layer_count = static_cast<int>(views.size());
-    out.mean2d = mean2d.data();
+    out.mean2d = with_mean2d ? mean2d.data() : nullptr;
     return out;
   }
 };
@@ -419,6 +420,32 @@ TEST(SplatBackwardTest, FrozenLayerGetsNothingAndTheOtherLayerIsUnchanged) {
   partial.views[0].sh = nullptr;
   EXPECT_EQ(RunForwardBackward(camera, sets, settings, loss, &ctx, &partial).code(),
             M4D_ERR_INVALID_ARG);
+}
+
+// Without view-space gradients a frozen leading layer needs none: its tiles and pixel groups
+// without a trained splat are skipped, and the trained layer's gradients stay bit for bit.
+TEST(SplatBackwardTest, FrozenLeadingLayerIsSkippedAndTheOtherLayerIsUnchanged) {
+  const Camera camera = test::TestCamera(160, 120);
+  test::SceneOptions small = Options(60, 1);
+  small.extent = 0.25f;
+  const std::vector<GaussianSet> sets = {test::RandomGaussians(Options(900, 1), 61),
+                                         test::RandomGaussians(small, 62)};
+  const Loss loss = RandomLoss(camera, true, 11);
+  RenderSettings settings;
+  RenderContext ctx;
+  Gradients all(sets);
+  all.with_mean2d = false;
+  ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &all).ok());
+  Gradients frozen(sets);
+  frozen.with_mean2d = false;
+  frozen.views[0] = LayerGradients();
+  ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &frozen).ok());
+  EXPECT_EQ(frozen.positions[1], all.positions[1]);
+  EXPECT_EQ(frozen.log_scales[1], all.log_scales[1]);
+  EXPECT_EQ(frozen.rotations[1], all.rotations[1]);
+  EXPECT_EQ(frozen.logits[1], all.logits[1]);
+  EXPECT_EQ(frozen.sh[1], all.sh[1]);
+  EXPECT_NE(all.positions[1], std::vector<float>(3 * sets[1].size(), 0.0f));
 }
 
 TEST(SplatBackwardTest, CulledGaussiansGetZeroGradients) {

@@ -8,8 +8,11 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "chunked_encode.h"
 #include "command_status.h"
 #include "io/atomic_file.h"
+#include "mpi_ranks.h"
+#include "peak_memory.h"
 #include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
@@ -326,6 +329,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
                                        ? nlohmann::json("auto")
                                        : nlohmann::json(o.keyframe_rate_weight)},
           {"fps", args.fps},
+          {"chunk_frames", args.chunk_frames},
           {"seed", o.seed}};
 }
 
@@ -363,51 +367,97 @@ std::string ReportPath(const EncodeArguments& args) {
   return args.json.empty() ? args.output + ".json" : args.json;
 }
 
-Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
-  EncoderOptions options;
-  M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
-  // Hours of encoding must not end in a path that cannot be written.
-  M4D_RETURN_IF_ERROR(CheckOutputPath(args.output));
-  M4D_RETURN_IF_ERROR(CheckOutputPath(ReportPath(args)));
-  uint32_t unused_num, unused_den;
-  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
-  Capture capture;
-  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
-  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
-  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
-  // An automatic share needs the first keyframe's training; a given keyframe has none.
-  PruneShareChoice prune_choice;
-  const bool trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
-  if (trains_first && args.prune.Automatic()) {
-    M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, options.first_frame,
-                                          FirstKeyframeTraining(options), args.prune,
-                                          &options.keyframe.importance_prune_share, &prune_choice));
+namespace {
+
+// What the automatic keyframe settings chose (when the first keyframe is trained here).
+struct AutomaticChoices {
+  bool trains_first = false;
+  PruneShareChoice prune;
+  RateWeightChoice rate;
+};
+
+// The automatic prune share and keyframe rate weight: an automatic share needs the first
+// keyframe's training, a given keyframe has none. Under MPI rank 0 chooses for every rank.
+Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
+                               EncoderOptions* options, AutomaticChoices* choices) {
+  choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
+  Status status = Status::Ok();
+  if (CurrentRanks().rank == 0 && choices->trains_first && args.prune.Automatic()) {
+    status =
+        ResolvePruneShare(capture, options->first_frame, FirstKeyframeTraining(*options),
+                          args.prune, &options->keyframe.importance_prune_share, &choices->prune);
   }
-  RateWeightChoice rate_choice;
-  if (trains_first && args.keyframe_rate.automatic) {
+  if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
+      args.keyframe_rate.automatic) {
     RateWeightArguments rate = args.keyframe_rate;
     rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
-    M4D_RETURN_IF_ERROR(ResolveRateWeight(
-        capture, options.first_frame, FirstKeyframeTraining(options), rate,
-        options.keyframe_rate_weight, &options.keyframe_rate_weight, &rate_choice));
+    status = ResolveRateWeight(capture, options->first_frame, FirstKeyframeTraining(*options), rate,
+                               options->keyframe_rate_weight, &options->keyframe_rate_weight,
+                               &choices->rate);
   }
+  if (!AllRanksOk(status.ok()))
+    return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 failed") : status;
+  double chosen[2] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight};
+  BroadcastDoubles(chosen, 2);
+  options->keyframe.importance_prune_share = static_cast<float>(chosen[0]);
+  options->keyframe_rate_weight = chosen[1];
+  return Status::Ok();
+}
 
+Status ReadFirstKeyframe(const EncodeArguments& args, int sh_degree, GaussianModel* model) {
+  GaussianSet set;
+  M4D_RETURN_IF_ERROR(ReadGaussianPly(args.keyframe_ply, &set));
+  if (set.sh_degree < sh_degree) {
+    return Status(M4D_ERR_INVALID_ARG, args.keyframe_ply + ": SH degree " +
+                                           std::to_string(set.sh_degree) + " below the stream's " +
+                                           std::to_string(sh_degree));
+  }
+  return ModelFromGaussianSet(set, sh_degree, model);
+}
+
+// Progress on stderr and the frame table on stdout; under MPI each rank's lines are prefixed
+// with it, and keyframe training reports every quarter instead of drawing a bar.
+struct EncodeProgress {
   ProgressBar bar;
   bool header = true;
-  EncoderCallbacks callbacks;
-  callbacks.training = [&](const std::string& stage, int frame, const TrainingProgress& p) {
-    if (p.iteration == 0) return;
-    bar.Update(p, stage + " " + std::to_string(frame));
-    if (p.iteration == p.iterations) bar.Finish();
-  };
-  callbacks.stage = [](const std::string& stage, int frame) {
-    ShowStatus(stderr, "  frame " + std::to_string(frame) + ": " + stage);
-  };
-  callbacks.frame_coded = [&](const FrameReport& f) {
-    ClearStatus(stderr);
-    PrintFrameLine(stdout, f, header);
-    header = false;
-  };
+  int last_quarter = -1;
+
+  EncoderCallbacks Callbacks() {
+    EncoderCallbacks callbacks;
+    const bool several = CurrentRanks().size > 1;
+    callbacks.training = [this, several](const std::string& stage, int frame,
+                                         const TrainingProgress& p) {
+      if (p.iteration == 0) return;
+      const std::string label = stage + " " + std::to_string(frame);
+      if (several) {
+        const int quarter = 4 * p.iteration / std::max(1, p.iterations);
+        if (quarter != last_quarter) {
+          std::fprintf(stderr, "%s%s: %d/%d iterations\n", RankPrefix().c_str(), label.c_str(),
+                       p.iteration, p.iterations);
+        }
+        last_quarter = quarter == 4 ? -1 : quarter;
+        return;
+      }
+      bar.Update(p, label);
+      if (p.iteration == p.iterations) bar.Finish();
+    };
+    callbacks.stage = [several](const std::string& stage, int frame) {
+      if (!several) ShowStatus(stderr, "  frame " + std::to_string(frame) + ": " + stage);
+    };
+    callbacks.frame_coded = [this, several](const FrameReport& f) {
+      ClearStatus(stderr);
+      if (several) std::fputs(RankPrefix().c_str(), stdout);
+      PrintFrameLine(stdout, f, header && !several);
+      header = false;
+    };
+    return callbacks;
+  }
+};
+
+Status EncodeWhole(const EncodeArguments& args, const Capture& capture,
+                   const EncoderOptions& options, EncodeProgress* progress, SequenceReport* report,
+                   std::vector<uint8_t>* stream) {
+  EncoderCallbacks callbacks = progress->Callbacks();
   Status view_status = Status::Ok();
   std::unique_ptr<VideoWriter> views_video;
   if (!args.views.empty()) {
@@ -423,19 +473,13 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   }
   SequenceEncoder encoder(capture, options);
   if (!args.keyframe_ply.empty()) {
-    GaussianSet set;
     GaussianModel model;
-    M4D_RETURN_IF_ERROR(ReadGaussianPly(args.keyframe_ply, &set));
-    if (set.sh_degree < options.sh_degree) {
-      return Status(M4D_ERR_INVALID_ARG,
-                    args.keyframe_ply + ": SH degree " + std::to_string(set.sh_degree) +
-                        " below the stream's " + std::to_string(options.sh_degree));
-    }
-    M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, options.sh_degree, &model));
+    M4D_RETURN_IF_ERROR(ReadFirstKeyframe(args, options.sh_degree, &model));
     encoder.SetFirstKeyframe(std::move(model));
   }
   if (args.keyframe_source) encoder.SetKeyframeSource(args.keyframe_source);
   M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, report));
+  report->peak_memory_bytes = PeakMemoryBytes();
   PrintSummary(stdout, *report);
   M4D_RETURN_IF_ERROR(view_status);
   if (views_video) {
@@ -443,18 +487,109 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
     std::printf("%-34s %s/views.mp4 (%s)\n", "held-out views", args.views.c_str(),
                 views_video->codec_name().c_str());
   }
+  *stream = encoder.stream();
+  return Status::Ok();
+}
 
-  M4D_RETURN_IF_ERROR(
-      WriteFileAtomically(args.output, encoder.stream().data(), encoder.stream().size()));
-  const std::string json_path = ReportPath(args);
-  const nlohmann::json extra = {
+std::string CheckpointDir(const EncodeArguments& args) {
+  return args.checkpoint_dir.empty() ? args.output + ".chunks" : args.checkpoint_dir;
+}
+
+void PrintChunkTable(const nlohmann::json& table) {
+  std::printf("\n%6s %7s %7s %5s %10s %10s\n", "chunk", "frames", "first", "rank", "seconds", "KB");
+  for (const nlohmann::json& c : table) {
+    std::printf("%6d %7d %7d %5d %10.1f %10.2f\n", c["chunk"].get<int>(), c["count"].get<int>(),
+                c["first"].get<int>(), c["rank"].get<int>(), c["seconds"].get<double>(),
+                static_cast<double>(c["bytes"].get<size_t>()) / 1000.0);
+  }
+}
+
+// Chunked: *done is false when this rank has nothing to write (not rank 0, or chunks remain).
+Status EncodeChunked(const EncodeArguments& args, const Capture& capture,
+                     const EncoderOptions& options, const nlohmann::json& settings,
+                     EncodeProgress* progress, SequenceReport* report, std::vector<uint8_t>* stream,
+                     nlohmann::json* chunk_table, bool* done) {
+  ChunkedEncodeOptions chunked;
+  chunked.chunk_frames = args.chunk_frames;
+  chunked.checkpoint_dir = CheckpointDir(args);
+  chunked.settings = settings;
+  chunked.max_chunks = args.max_chunks;
+  GaussianModel first;
+  if (!args.keyframe_ply.empty()) {
+    M4D_RETURN_IF_ERROR(ReadFirstKeyframe(args, options.sh_degree, &first));
+    chunked.first_keyframe = &first;
+  }
+  ChunkedEncodeResult result;
+  M4D_RETURN_IF_ERROR(RunChunkedEncode(capture, options, chunked, progress->Callbacks(), &result));
+  *done = result.complete && CurrentRanks().rank == 0;
+  if (!result.complete && CurrentRanks().rank == 0) {
+    std::printf("%zu of %zu chunks done in %s: the same command goes on with the others\n",
+                result.chunks_done, result.chunks, chunked.checkpoint_dir.c_str());
+  }
+  if (!*done) return Status::Ok();
+  *report = std::move(result.report);
+  *stream = std::move(result.stream);
+  *chunk_table = std::move(result.chunk_table);
+  report->peak_memory_bytes = PeakMemoryBytes();
+  std::printf("\n");
+  for (size_t f = 0; f < report->frames.size(); ++f) {
+    PrintFrameLine(stdout, report->frames[f], f == 0);
+  }
+  PrintChunkTable(*chunk_table);
+  std::printf("\n");
+  PrintSummary(stdout, *report);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
+  EncoderOptions options;
+  M4D_RETURN_IF_ERROR(ResolveEncoderOptions(args, &options));
+  const bool chunked = args.chunk_frames > 0 || CurrentRanks().size > 1;
+  if (chunked && (!args.views.empty() || args.keyframe_source || options.independent_frames)) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "chunked encoding (--chunk-frames, MPI) codes no --views and no baseline");
+  }
+  // Hours of encoding must not end in a path that cannot be written.
+  if (CurrentRanks().rank == 0) {
+    M4D_RETURN_IF_ERROR(CheckOutputPath(args.output));
+    M4D_RETURN_IF_ERROR(CheckOutputPath(ReportPath(args)));
+  }
+  uint32_t unused_num, unused_den;
+  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
+  Capture capture;
+  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
+  M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
+  AutomaticChoices choices;
+  M4D_RETURN_IF_ERROR(ResolveAutomaticChoices(args, capture, &options, &choices));
+
+  EncodeProgress progress;
+  std::vector<uint8_t> stream;
+  nlohmann::json extra = {
       {"options", EncodeOptionsJson(args)},
       {"prune_share_selection",
-       trains_first ? PruneShareJson(args.prune, prune_choice) : nlohmann::json()},
+       choices.trains_first ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
       {"rate_weight_selection",
-       trains_first ? RateWeightJson(args.keyframe_rate, rate_choice) : nlohmann::json()}};
+       choices.trains_first ? RateWeightJson(args.keyframe_rate, choices.rate) : nlohmann::json()}};
+  if (chunked) {
+    nlohmann::json settings = extra["options"];
+    settings["resolved"] = {options.keyframe.importance_prune_share, options.keyframe_rate_weight,
+                            options.fps_num, options.fps_den, capture.frame_count};
+    bool done = false;
+    nlohmann::json chunk_table;
+    M4D_RETURN_IF_ERROR(EncodeChunked(args, capture, options, settings, &progress, report, &stream,
+                                      &chunk_table, &done));
+    if (!done) return Status::Ok();
+    extra["chunks"] = chunk_table;
+  } else {
+    M4D_RETURN_IF_ERROR(EncodeWhole(args, capture, options, &progress, report, &stream));
+  }
+  M4D_RETURN_IF_ERROR(WriteFileAtomically(args.output, stream.data(), stream.size()));
+  const std::string json_path = ReportPath(args);
   M4D_RETURN_IF_ERROR(WriteReportJson(json_path, *report, extra.dump()));
-  M4D_RETURN_IF_ERROR(CheckDecodedHashes(encoder.stream(), *report));
+  M4D_RETURN_IF_ERROR(CheckDecodedHashes(stream, *report));
   std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",
               "decoder check", report->frames.size());
   std::printf("%-34s %s (report %s)\n", "stream", args.output.c_str(), json_path.c_str());
@@ -474,6 +609,17 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--views", args->views,
                   "write the held-out view, its decoded render and their difference (x4), one PNG "
                   "per frame and views.mp4 of them all, here");
+  cmd->add_option("--chunk-frames", args->chunk_frames,
+                  "code the frames in chunks of this many, each from a random-access keyframe, "
+                  "checkpointed and spread over the ranks of an MPI job (default under MPI: the "
+                  "frames over the ranks)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--checkpoint-dir", args->checkpoint_dir,
+                  "finished chunks, kept for a resumed run (default: the stream's name + "
+                  ".chunks; under MPI on a file system every rank sees)");
+  cmd->add_option("--max-chunks", args->max_chunks,
+                  "stop after coding this many chunks (per rank); the same command resumes")
+      ->check(CLI::PositiveNumber);
   auto overwrite = std::make_shared<bool>(false);
   cmd->add_flag("-f,--force", *overwrite, "replace an existing stream (else refused)");
   cmd->callback([args, overwrite, exit_code]() {

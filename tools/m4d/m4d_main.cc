@@ -1,7 +1,8 @@
 // m4d: the reference encoder's command line. Subcommands: scene (write the built-in
 // synthetic scene), train (one frame's 3D Gaussians), encode (a multi-view video to a stream),
 // rd (an RD sweep over lambda_2 against the baselines), ablate (the paper's ablation study),
-// bench (encode and decode time per frame).
+// bench (encode and decode time per frame). Under mpirun or srun, encode spreads chunks of
+// the frames over the ranks (chunked_encode.h).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
@@ -9,6 +10,7 @@
 #include "bench_command.h"
 #include "encode_command.h"
 #include "m4d/m4d.h"
+#include "mpi_ranks.h"
 #include "rd_command.h"
 #include "scene_command.h"
 #include "train_command.h"
@@ -21,6 +23,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("m4d ") + m4d_version());
   int exit_code = 0;
+  const m4d::Status ranks = m4d::StartRanks(&argc, &argv);
+  if (!ranks.ok()) {
+    std::fprintf(stderr, "m4d: %s\n", ranks.message().c_str());
+    return 2;
+  }
   m4d::AddSceneCommand(&app, &exit_code);
   m4d::AddTrainCommand(&app, &exit_code);
   m4d::AddEncodeCommand(&app, &exit_code);
@@ -28,5 +35,6 @@ int main(int argc, char** argv) {
   m4d::AddAblateCommand(&app, &exit_code);
   m4d::AddBenchCommand(&app, &exit_code);
   M4D_PARSE_ARGUMENTS(app, argc, argv);
+  m4d::FinishRanks(exit_code);
   return exit_code;
 }

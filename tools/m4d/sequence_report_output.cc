@@ -111,6 +111,10 @@ void PrintSummary(std::FILE* out, const SequenceReport& report) {
   }
   std::fprintf(out, "%-34s %.1f s (%.1f s per inter frame)\n", "encoding time", s.seconds,
                s.seconds_per_inter_frame);
+  if (report.peak_memory_bytes > 0) {
+    std::fprintf(out, "%-34s %.1f MB\n", "peak memory",
+                 static_cast<double>(report.peak_memory_bytes) / 1e6);
+  }
   std::fprintf(out, "%-34s %8s %7s\n", "bytes by layer", "KB/frame", "share");
   for (const ReportLayer& layer : ReportLayers()) {
     const double kb = s.kb_per_frame_by_type[layer.packet_type];
@@ -120,40 +124,85 @@ void PrintSummary(std::FILE* out, const SequenceReport& report) {
   }
 }
 
+nlohmann::json FrameReportJson(const FrameReport& f) {
+  using nlohmann::json;
+  json bytes = {{"total", f.bytes.total()}};
+  for (const ReportLayer& layer : ReportLayers()) bytes[layer.key] = Layer(f, layer.packet_type);
+  json seconds = {{"keyframe", f.seconds.keyframe}, {"decoupling", f.seconds.decoupling},
+                  {"motion", f.seconds.motion},     {"compensation", f.seconds.compensation},
+                  {"coding", f.seconds.coding},     {"evaluation", f.seconds.evaluation},
+                  {"total", f.seconds.total()}};
+  return {{"frame", f.frame_index},
+          {"keyframe", f.keyframe},
+          {"random_access", f.random_access},
+          {"bytes", bytes},
+          {"static_gaussians", f.static_count},
+          {"dynamic_gaussians", f.dynamic_count},
+          {"added", f.added},
+          {"removed", f.removed},
+          {"gop_ratio", f.ratio},
+          {"training_psnr", f.training_psnr},
+          {"compensation_gain", f.compensation_gain},
+          {"motion_gain", f.motion_gain},
+          {"motion_skipped", f.motion_skipped},
+          {"appearance_gain", f.appearance_gain},
+          {"appearance_skipped", f.appearance_skipped},
+          {"psnr_reference", f.psnr_reference},
+          {"prediction_psnr", f.prediction_psnr},
+          {"seeded", f.seeded},
+          {"psnr", f.held_out ? json(f.psnr) : json(nullptr)},
+          {"ssim", f.held_out ? json(f.ssim) : json(nullptr)},
+          {"hash", f.hash},
+          {"seconds", seconds}};
+}
+
+Status FrameReportFromJson(const nlohmann::json& j, FrameReport* f) {
+  try {
+    *f = FrameReport();
+    f->frame_index = j.at("frame").get<uint32_t>();
+    f->keyframe = j.at("keyframe").get<bool>();
+    f->random_access = j.at("random_access").get<bool>();
+    for (const ReportLayer& layer : ReportLayers()) {
+      f->bytes.by_type[layer.packet_type] = j.at("bytes").at(layer.key).get<size_t>();
+    }
+    f->static_count = j.at("static_gaussians").get<size_t>();
+    f->dynamic_count = j.at("dynamic_gaussians").get<size_t>();
+    f->added = j.at("added").get<size_t>();
+    f->removed = j.at("removed").get<size_t>();
+    f->ratio = j.at("gop_ratio").get<double>();
+    f->training_psnr = j.at("training_psnr").get<double>();
+    f->compensation_gain = j.at("compensation_gain").get<double>();
+    f->motion_gain = j.at("motion_gain").get<double>();
+    f->motion_skipped = j.at("motion_skipped").get<bool>();
+    f->appearance_gain = j.at("appearance_gain").get<double>();
+    f->appearance_skipped = j.at("appearance_skipped").get<bool>();
+    f->psnr_reference = j.at("psnr_reference").get<double>();
+    f->prediction_psnr = j.at("prediction_psnr").get<double>();
+    f->seeded = j.at("seeded").get<size_t>();
+    f->held_out = !j.at("psnr").is_null();
+    if (f->held_out) {
+      f->psnr = j.at("psnr").get<double>();
+      f->ssim = j.at("ssim").get<double>();
+    }
+    f->hash = j.at("hash").get<std::string>();
+    const nlohmann::json& s = j.at("seconds");
+    f->seconds.keyframe = s.at("keyframe").get<double>();
+    f->seconds.decoupling = s.at("decoupling").get<double>();
+    f->seconds.motion = s.at("motion").get<double>();
+    f->seconds.compensation = s.at("compensation").get<double>();
+    f->seconds.coding = s.at("coding").get<double>();
+    f->seconds.evaluation = s.at("evaluation").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    return Status(M4D_ERR_INVALID_ARG, std::string("frame report: ") + e.what());
+  }
+  return Status::Ok();
+}
+
 Status WriteReportJson(const std::string& path, const SequenceReport& report,
                        const std::string& extra_json_object) {
   using nlohmann::json;
   json frames = json::array();
-  for (const FrameReport& f : report.frames) {
-    json bytes = {{"total", f.bytes.total()}};
-    for (const ReportLayer& layer : ReportLayers()) bytes[layer.key] = Layer(f, layer.packet_type);
-    json seconds = {{"keyframe", f.seconds.keyframe}, {"decoupling", f.seconds.decoupling},
-                    {"motion", f.seconds.motion},     {"compensation", f.seconds.compensation},
-                    {"coding", f.seconds.coding},     {"evaluation", f.seconds.evaluation},
-                    {"total", f.seconds.total()}};
-    frames.push_back({{"frame", f.frame_index},
-                      {"keyframe", f.keyframe},
-                      {"random_access", f.random_access},
-                      {"bytes", bytes},
-                      {"static_gaussians", f.static_count},
-                      {"dynamic_gaussians", f.dynamic_count},
-                      {"added", f.added},
-                      {"removed", f.removed},
-                      {"gop_ratio", f.ratio},
-                      {"training_psnr", f.training_psnr},
-                      {"compensation_gain", f.compensation_gain},
-                      {"motion_gain", f.motion_gain},
-                      {"motion_skipped", f.motion_skipped},
-                      {"appearance_gain", f.appearance_gain},
-                      {"appearance_skipped", f.appearance_skipped},
-                      {"psnr_reference", f.psnr_reference},
-                      {"prediction_psnr", f.prediction_psnr},
-                      {"seeded", f.seeded},
-                      {"psnr", f.held_out ? json(f.psnr) : json(nullptr)},
-                      {"ssim", f.held_out ? json(f.ssim) : json(nullptr)},
-                      {"hash", f.hash},
-                      {"seconds", seconds}});
-  }
+  for (const FrameReport& f : report.frames) frames.push_back(FrameReportJson(f));
   const SequenceSummary s = Summarise(report);
   json by_layer = json::object();
   for (const ReportLayer& layer : ReportLayers()) {
@@ -173,6 +222,7 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
                 {"ssim", s.held_out ? json(s.ssim) : json(nullptr)},
                 {"seconds", s.seconds},
                 {"seconds_per_inter_frame", s.seconds_per_inter_frame},
+                {"peak_memory_bytes", report.peak_memory_bytes},
                 {"kb_per_frame_by_layer", by_layer}}}};
   if (!extra_json_object.empty()) {
     json extra = json::parse(extra_json_object, nullptr, false);

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "common/status.h"
 #include "pipeline/frame_report.h"
 
@@ -42,6 +44,10 @@ SequenceSummary Summarise(const SequenceReport& report);
 // One line per frame; the header line first when `header`.
 void PrintFrameLine(std::FILE* out, const FrameReport& frame, bool header);
 void PrintSummary(std::FILE* out, const SequenceReport& report);
+
+// A frame's report as JSON (the reports' "frames" entries) and back.
+nlohmann::json FrameReportJson(const FrameReport& frame);
+Status FrameReportFromJson(const nlohmann::json& json, FrameReport* frame);
 
 // The report as JSON (frames, summary, and `extra` fields such as the options used).
 Status WriteReportJson(const std::string& path, const SequenceReport& report,

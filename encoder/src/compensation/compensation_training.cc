@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "metrics/photometric_loss.h"
+#include "metrics/focused_loss.h"
 #include "render/splat_backward.h"
 #include "render/splat_renderer.h"
 #include "render/viewspace_gradient.h"
@@ -138,7 +138,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   outputs.layers = layer_grads;
   outputs.layer_count = 3;
   BackwardWorkspace workspace;
-  PhotometricLoss loss(options.ssim_weight);
+  FocusedLoss loss(options.ssim_weight);
   Image rendered, grad;
   TrainingRandom rng(options.seed);
   std::vector<int> order;
@@ -146,6 +146,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   double color_sum = 0;
   int color_count = 0;
   const size_t initial = model.size();
+  RenderSettings focused = settings;
+  focused.focus_layer = 1;  // the static layer alone is the same in every step
   auto prune = [&]() {
     std::vector<uint8_t> keep(model.size());
     for (size_t i = 0; i < model.size(); ++i) {
@@ -166,10 +168,10 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     const int view = order[cursor++];
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     const Camera& camera = views.cameras[view];
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 3, settings, nullptr, &context));
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 3, focused, nullptr, &context));
     CopyRender(camera, context, &rendered);
     PhotometricLossValue value;
-    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &grad));
+    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], context.focus, &value, &grad));
     color_sum += value.loss;
     ++color_count;
     layer_grads[2] = GradientView(&gradients);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "metrics/focused_loss.h"
 #include "motion/appearance_estimation.h"
 #include "render/splat_renderer.h"
 #include "train/adam_optimizer.h"
@@ -149,9 +150,10 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
   std::copy(options.background, options.background + 3, settings.background);
+  settings.focus_layer = 1;  // the static layer alone is the same in every step
   RenderContext context;
   BackwardWorkspace workspace;
-  PhotometricLoss loss(options.ssim_weight);
+  FocusedLoss loss(options.ssim_weight);
   Image rendered, loss_grad;
   std::vector<float> moved_p(3 * n), moved_q(4 * n), d_p(3 * n), d_q(4 * n);
   std::vector<float> d_scales(3 * n), d_logits(n), d_sh(dynamic_set.sh.size());
@@ -215,7 +217,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
       rendered.channels = 3;
       rendered.pixels = context.color;
       PhotometricLossValue value;
-      M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], &value, &loss_grad));
+      M4D_RETURN_IF_ERROR(
+          loss.Evaluate(rendered, views.images[view], context.focus, &value, &loss_grad));
       color_sum += value.loss;
       ++color_count;
       M4D_RETURN_IF_ERROR(

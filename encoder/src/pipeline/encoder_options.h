@@ -65,6 +65,12 @@ struct EncoderOptions {
   // Frames [first_frame, first_frame + frame_count) of the capture (0: to its end).
   int first_frame = 0;
   int frame_count = 0;
+  // Where these frames sit in the stream being written: the frame_index of first_frame's
+  // packets and the SEQUENCE_HEADER's frame count (0: frame_count). A chunk of a long capture
+  // (a random-access point and the frames up to the next) is coded alone this way, and the
+  // chunks' streams, concatenated in order, are the whole stream.
+  uint32_t stream_first_index = 0;
+  uint32_t stream_frame_count = 0;
 
   // Stages.
   KeyframeTrainingOptions keyframe = KeyframeTrainingOptions::Short();

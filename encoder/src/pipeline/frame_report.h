@@ -69,6 +69,8 @@ struct FrameReport {
 struct SequenceReport {
   std::vector<FrameReport> frames;
   size_t stream_bytes = 0;  // the whole stream
+  // The encoding process's peak resident memory (0: not measured; chunked: rank 0's).
+  size_t peak_memory_bytes = 0;
 };
 
 }  // namespace m4d

@@ -62,7 +62,9 @@ StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames) {
   w.sequence.sh_degree = o.sh_degree;
   w.sequence.fps_num = o.fps_num;
   w.sequence.fps_den = o.fps_den;
-  w.sequence.num_frames = static_cast<uint32_t>(frames);
+  w.sequence.num_frames =
+      o.stream_frame_count > 0 ? o.stream_frame_count : static_cast<uint32_t>(frames);
+  w.first_frame_index = o.stream_first_index;
   w.sequence.grid = o.grid;
   w.sequence.mlp = o.mlp;
   w.quantization = o.quantization;

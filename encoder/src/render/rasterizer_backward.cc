@@ -15,6 +15,7 @@ void BlendRecord::Reserve(size_t max_splats) {
   const size_t n = std::max<size_t>(max_splats, 1);
   splat_.resize(n);
   lanes_.resize(2 * kLanes * n);
+  trainable_.resize(n);
 }
 
 namespace {
@@ -49,8 +50,10 @@ bool MatchesForward(const TileGradientTarget& target, const PixelGroup& g) {
 }
 
 // Walks the recorded splats of group g back to front, adding to their entry gradients.
+// Splats not `trainable` (null: all are) only pass on what lies behind them.
 void WalkBack(const TileSplats& s, const PixelGroup& g, const BlendRecord& record,
-              const GroupLoss& loss, const float* background, float* entry_gradients) {
+              const uint8_t* trainable, const GroupLoss& loss, const float* background,
+              float* entry_gradients) {
   Lanes behind[3] = {Broadcast(background[0]), Broadcast(background[1]), Broadcast(background[2])};
   Lanes behind_alpha{};
   for (size_t h = record.size(); h-- > 0;) {
@@ -58,6 +61,11 @@ void WalkBack(const TileSplats& s, const PixelGroup& g, const BlendRecord& recor
     const Lanes alpha = LoadLanes(record.alpha(h));
     const Lanes t = LoadLanes(record.transmittance(h));
     const Lanes one_minus = 1.0f - alpha;
+    if (trainable && !trainable[j]) {
+      behind_alpha = alpha + one_minus * behind_alpha;
+      for (int c = 0; c < 3; ++c) behind[c] = alpha * s.color[c][j] + one_minus * behind[c];
+      continue;
+    }
     Lanes dl_dalpha = loss.alpha * (1.0f - behind_alpha);
     behind_alpha = alpha + one_minus * behind_alpha;
     const Lanes weight = alpha * t;
@@ -97,7 +105,18 @@ bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size
                        const TileGradientTarget& target, TileSplatBuffer* buffer,
                        BlendRecord* record, float* accumulator) {
   const uint32_t begin = bins.tile_start[tile], end = bins.tile_start[tile + 1];
-  const TileSplats& s = buffer->Gather(splats, bins.entries.data() + begin, end - begin);
+  const uint32_t* entries = bins.entries.data() + begin;
+  uint8_t* trainable = nullptr;
+  if (target.first_trainable > 0) {
+    trainable = record->trainable();
+    bool any = false;
+    for (uint32_t j = 0; j < end - begin; ++j) {
+      trainable[j] = entries[j] >= target.first_trainable;
+      any = any || trainable[j];
+    }
+    if (!any) return true;
+  }
+  const TileSplats& s = buffer->Gather(splats, entries, end - begin);
   std::fill(accumulator, accumulator + kEntryGradients * size_t{end - begin}, 0.0f);
   const int tx = static_cast<int>(tile % bins.tiles_x), ty = static_cast<int>(tile / bins.tiles_x);
   const int x_end = std::min(target.width, (tx + 1) * kTileSize);
@@ -107,14 +126,19 @@ bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size
     for (int x0 = tx * kTileSize; x0 < x_end; x0 += kLanes) {
       PixelGroup group = StartPixelGroup(x0, y, target.width);
       record->Clear();
+      bool trained = !trainable;
       BlendPixelGroup(s, &group, [&](size_t j, const Lanes& alpha, const Lanes& t, bool blended) {
         record->Push(static_cast<uint32_t>(j), &alpha, &t, blended);
+        trained = trained || (blended && trainable[j]);
       });
       matches = matches && MatchesForward(target, group);
-      WalkBack(s, group, *record, LoadGroupLoss(target, group), target.background, accumulator);
+      if (!trained) continue;
+      WalkBack(s, group, *record, trainable, LoadGroupLoss(target, group), target.background,
+               accumulator);
     }
   }
   for (uint32_t j = 0; j < end - begin; ++j) {
+    if (trainable && !trainable[j]) continue;
     std::copy(accumulator + kEntryGradients * j, accumulator + kEntryGradients * (j + 1),
               target.slot_gradients + kEntryGradients * size_t{bins.entry_slot[begin + j]});
   }

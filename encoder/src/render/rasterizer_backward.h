@@ -55,6 +55,8 @@ class BlendRecord {
     size_ += keep ? 1 : 0;
   }
   uint32_t splat(size_t h) const { return splat_[h]; }
+  // Per tile entry: 1 when its splat is trained (scratch of BackpropagateTile).
+  uint8_t* trainable() { return trainable_.data(); }
   const float* alpha(size_t h) const { return &lanes_[16 * h]; }
   const float* transmittance(size_t h) const { return &lanes_[16 * h + 8]; }
 
@@ -62,6 +64,7 @@ class BlendRecord {
   size_t size_ = 0;
   std::vector<uint32_t> splat_;
   std::vector<float> lanes_;  // per splat: 8 alphas, 8 transmittances
+  std::vector<uint8_t> trainable_;
 };
 
 struct TileGradientTarget {
@@ -72,6 +75,10 @@ struct TileGradientTarget {
   const float* final_transmittance = nullptr;
   const uint32_t* last_contributor = nullptr;
   float* slot_gradients = nullptr;  // kEntryGradients per slot
+  // Splats of a lower index (the leading frozen layers) get no gradient and their slots are
+  // not written: a tile without a trained splat is skipped, and so is every pixel group that
+  // blended none. The trained splats' gradients are the same bit for bit.
+  uint32_t first_trainable = 0;
 };
 
 // Writes the gradients of every entry of `tile` to its slot, using accumulator (per-worker

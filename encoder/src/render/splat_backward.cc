@@ -33,8 +33,8 @@ Status ValidateOutputs(const RenderContext& ctx, const SplatGradients& out) {
 }
 
 // Blending backward over all tiles. False if a replay differed from the forward pass.
-bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, RenderContext* ctx,
-                        BackwardWorkspace* ws) {
+bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, uint32_t first_trainable,
+                        RenderContext* ctx, BackwardWorkspace* ws) {
   TileGradientTarget target;
   target.width = ctx->camera.width;
   target.height = ctx->camera.height;
@@ -44,6 +44,7 @@ bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, RenderCo
   target.final_transmittance = ctx->final_transmittance.data();
   target.last_contributor = ctx->last_contributor.data();
   target.slot_gradients = ws->slot_gradients.data();
+  target.first_trainable = first_trainable;
   const size_t tiles = static_cast<size_t>(ctx->bins.tiles_x) * ctx->bins.tiles_y;
   ctx->pool->Run(tiles, [&](size_t tile, int worker) {
     if (!BackpropagateTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker],
@@ -53,6 +54,15 @@ bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, RenderCo
   });
   return std::find(ws->replay_mismatch.begin(), ws->replay_mismatch.end(), 1) ==
          ws->replay_mismatch.end();
+}
+
+// The Gaussians of the leading frozen layers, which need no gradient unless every splat's 2D
+// gradients were asked for.
+uint32_t FirstTrainable(const RenderContext& ctx, const SplatGradients& out) {
+  if (out.mean2d || out.color) return 0;
+  size_t first = 0;
+  for (int l = 0; l < out.layer_count && Frozen(out.layers[l]); ++l) first += ctx.layers[l].count;
+  return static_cast<uint32_t>(first);
 }
 
 // Sums the gradients of Gaussian g over its tiles, in a fixed order.
@@ -130,7 +140,8 @@ Status RenderBackward(const float* dl_dcolor, const float* dl_dalpha, RenderCont
   } catch (const std::bad_alloc&) {
     return Status(M4D_ERR_NOMEM, "backward: out of memory");
   }
-  if (!BackpropagateTiles(dl_dcolor, dl_dalpha, context, workspace)) {
+  if (!BackpropagateTiles(dl_dcolor, dl_dalpha, FirstTrainable(*context, out), context,
+                          workspace)) {
     return InvalidArg("backward: the forward pass's state was modified");
   }
   BackpropagateGaussians(out, context, *workspace);

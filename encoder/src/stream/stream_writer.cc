@@ -22,7 +22,7 @@ DecoderOptions ClosedLoopOptions() {
 }  // namespace
 
 StreamWriter::StreamWriter(const StreamWriterOptions& options)
-    : options_(options), decoder_(ClosedLoopOptions()) {}
+    : options_(options), decoder_(ClosedLoopOptions()), next_frame_(options.first_frame_index) {}
 
 // Sets are coded with the gaussian_set() syntax of the sequence's version, whatever the options
 // say: the encoder's reconstructions come from decoding what is written.

@@ -21,6 +21,7 @@ struct StreamWriterOptions {
   GaussianQuantization quantization;               // keyframe layers
   GaussianQuantization compensation_quantization;  // compensated Gaussians of inter frames
   int mlp_bits = 12;
+  uint32_t first_frame_index = 0;  // frame_index of the first frame written
 };
 
 // A change of a set (COMPENSATION, STATIC_UPDATE): one flag per Gaussian of the set (non-zero

@@ -14,6 +14,7 @@
 #include "render/projected_splats.h"
 #include "render/render_settings.h"
 #include "render/tile_binning.h"
+#include "render/tile_focus.h"
 #include "render/tile_splats.h"
 
 namespace m4d {
@@ -28,6 +29,8 @@ struct RenderContext {
   std::vector<float> error_weight;
   // Per Gaussian: projected mean (pixels), depth, radius (0: culled), conic, opacity, colour.
   ProjectedSplats splats;
+  // The tiles rendered: all of them, or with settings.focus_layer the focus (may be none).
+  TileFocus focus;
 
   // --- State of the last render, for the backward pass. The layer views point at the
   // caller's arrays, which must stay unchanged until the backward pass has run.

@@ -18,6 +18,11 @@ struct RenderSettings {
   float background[3] = {0.0f, 0.0f, 0.0f};
   // Also accumulate, per Gaussian, its blend weight sum_p alpha_i(p) T_i(p) over all pixels.
   bool blend_weights = false;
+  // With focus_layer >= 0, only the tiles that the splats of layers focus_layer.. can touch,
+  // each grown by focus_margin tiles, are rendered (tile_focus.h); the others hold the
+  // background with alpha 0 and give no blend weight. -1: every tile.
+  int focus_layer = -1;
+  int focus_margin = 1;
 };
 
 }  // namespace m4d

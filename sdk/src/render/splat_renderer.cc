@@ -20,6 +20,9 @@ Status ValidateSettings(const RenderSettings& s) {
     return InvalidArg("render: thread count out of range");
   }
   if (s.sh_degree < 0 || s.sh_degree > 3) return InvalidArg("render: SH degree out of range");
+  if (s.focus_layer < -1 || s.focus_margin < 0 || s.focus_margin > 1024) {
+    return InvalidArg("render: focus out of range");
+  }
   for (float b : s.background) {
     if (!std::isfinite(b)) return InvalidArg("render: background must be finite");
   }
@@ -75,6 +78,22 @@ void Project(const ProjectionConstants& pc, RenderContext* ctx) {
                     });
 }
 
+// All tiles, or those of settings.focus_layer's focus (the other splats clipped to its
+// bounding rectangle).
+void Focus(const ProjectionConstants& pc, RenderContext* ctx) {
+  const int layer = ctx->settings.focus_layer;
+  if (layer < 0) {
+    FocusAll(pc.tiles_x, pc.tiles_y, &ctx->focus);
+    return;
+  }
+  size_t first = 0;
+  for (int l = 0; l < layer && l < static_cast<int>(ctx->layers.size()); ++l) {
+    first += ctx->layers[l].count;
+  }
+  FocusOn(ctx->splats, first, ctx->settings.focus_margin, pc.tiles_x, pc.tiles_y, &ctx->focus);
+  ClipToFocus(ctx->focus.rect, &ctx->splats);
+}
+
 void Rasterize(const float* error_image, RenderContext* ctx) {
   const size_t pixels = static_cast<size_t>(ctx->camera.width) * ctx->camera.height;
   ctx->color.resize(3 * pixels);
@@ -105,6 +124,10 @@ void Rasterize(const float* error_image, RenderContext* ctx) {
   target.error_image = error_image;
   const size_t tiles = static_cast<size_t>(ctx->bins.tiles_x) * ctx->bins.tiles_y;
   ctx->pool->Run(tiles, [&](size_t tile, int worker) {
+    if (!ctx->focus.rendered(tile)) {
+      ClearTile(ctx->bins, tile, target);
+      return;
+    }
     RasterizeTile(ctx->splats, ctx->bins, tile, target, &ctx->tile_buffers[worker],
                   ctx->tile_accumulators[worker].data());
   });
@@ -144,6 +167,7 @@ Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int 
     PrepareState(camera, layers, layer_count, settings, context);
     const ProjectionConstants pc = MakeProjectionConstants(camera);
     Project(pc, context);
+    Focus(pc, context);
     M4D_RETURN_IF_ERROR(
         BinSplats(context->splats, pc.tiles_x, pc.tiles_y, context->pool.get(), &context->bins));
     Rasterize(error_image, context);

@@ -71,4 +71,23 @@ void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t t
   }
 }
 
+void ClearTile(const TileBins& bins, size_t tile, const TileTarget& target) {
+  const int tx = static_cast<int>(tile % bins.tiles_x), ty = static_cast<int>(tile / bins.tiles_x);
+  const int x_end = std::min(target.width, (tx + 1) * kTileSize);
+  const int y_end = std::min(target.height, (ty + 1) * kTileSize);
+  for (int y = ty * kTileSize; y < y_end; ++y) {
+    for (int x = tx * kTileSize; x < x_end; ++x) {
+      const size_t p = static_cast<size_t>(y) * target.width + x;
+      for (int c = 0; c < 3; ++c) target.color[3 * p + c] = target.background[c];
+      target.alpha[p] = 0.0f;
+      target.final_transmittance[p] = 1.0f;
+      target.last_contributor[p] = 0;
+    }
+  }
+  if (!target.slot_weights) return;
+  for (uint32_t k = bins.tile_start[tile]; k < bins.tile_start[tile + 1]; ++k) {
+    std::fill_n(target.slot_weights + 2 * size_t{bins.entry_slot[k]}, 2, 0.0f);
+  }
+}
+
 }  // namespace m4d

@@ -32,6 +32,10 @@ struct TileTarget {
 void RasterizeTile(const ProjectedSplats& splats, const TileBins& bins, size_t tile,
                    const TileTarget& target, TileSplatBuffer* buffer, float* accumulator);
 
+// A tile outside a render's focus (tile_focus.h): the background with alpha 0, and zero
+// weights for its entries.
+void ClearTile(const TileBins& bins, size_t tile, const TileTarget& target);
+
 }  // namespace m4d
 
 #endif  // M4D_RENDER_TILE_RASTERIZER_H_

@@ -1,0 +1,195 @@
+#include "chunked_encode.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "image/file_bytes.h"
+#include "io/atomic_file.h"
+#include "mpi_ranks.h"
+#include "sequence_report_output.h"
+
+namespace m4d {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kMaxCheckpointBytes = size_t{1} << 32;
+
+std::string ChunkPath(const std::string& dir, size_t c, const char* extension) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "chunk_%05zu.%s", c, extension);
+  return (std::filesystem::path(dir) / name).string();
+}
+
+std::string SettingsPath(const std::string& dir) {
+  return (std::filesystem::path(dir) / "settings.json").string();
+}
+
+Status ReadJson(const std::string& path, nlohmann::json* json) {
+  std::vector<uint8_t> bytes;
+  M4D_RETURN_IF_ERROR(ReadFileBytes(path, kMaxCheckpointBytes, &bytes));
+  *json = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  if (json->is_discarded()) return Status(M4D_ERR_INVALID_ARG, path + ": not JSON");
+  return Status::Ok();
+}
+
+Status WriteJson(const std::string& path, const nlohmann::json& json) {
+  const std::string text = json.dump(1) + "\n";
+  return WriteFileAtomically(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+}
+
+// Rank 0: the directory holds this encoding's settings (written when new).
+Status CheckSettings(const std::string& dir, const nlohmann::json& settings) {
+  const std::string path = SettingsPath(dir);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    M4D_RETURN_IF_ERROR(CheckOutputPath(path));  // creates the directory
+    return WriteJson(path, settings);
+  }
+  nlohmann::json stored;
+  M4D_RETURN_IF_ERROR(ReadJson(path, &stored));
+  if (stored != settings) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  dir +
+                      " holds the chunks of an encoding with other settings: remove it, or "
+                      "give another --checkpoint-dir");
+  }
+  return Status::Ok();
+}
+
+// A chunk is done when its report (written after its stream) names it and its stream's size.
+bool ChunkDone(const std::string& dir, size_t c, const Chunk& chunk) {
+  nlohmann::json json;
+  if (!ReadJson(ChunkPath(dir, c, "json"), &json).ok()) return false;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(ChunkPath(dir, c, "m4d"), ec);
+  return !ec && json.value("first", -1) == chunk.first && json.value("count", -1) == chunk.count &&
+         json.value("stream_bytes", size_t{0}) == size;
+}
+
+Status EncodeChunk(const Capture& capture, const EncoderOptions& options, size_t c,
+                   const Chunk& chunk, uint32_t stream_frames, const ChunkedEncodeOptions& chunked,
+                   const EncoderCallbacks& callbacks) {
+  const Clock::time_point start = Clock::now();
+  EncoderOptions o = options;
+  o.first_frame = chunk.first;
+  o.frame_count = chunk.count;
+  o.stream_first_index = static_cast<uint32_t>(chunk.first - options.first_frame);
+  o.stream_frame_count = stream_frames;
+  SequenceEncoder encoder(capture, o);
+  if (c == 0 && chunked.first_keyframe) encoder.SetFirstKeyframe(*chunked.first_keyframe);
+  SequenceReport report;
+  M4D_RETURN_IF_ERROR(encoder.Encode(callbacks, &report));
+  const std::vector<uint8_t>& stream = encoder.stream();
+  M4D_RETURN_IF_ERROR(WriteFileAtomically(ChunkPath(chunked.checkpoint_dir, c, "m4d"),
+                                          stream.data(), stream.size()));
+  nlohmann::json frames = nlohmann::json::array();
+  for (const FrameReport& f : report.frames) frames.push_back(FrameReportJson(f));
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const nlohmann::json json = {{"first", chunk.first},          {"count", chunk.count},
+                               {"rank", CurrentRanks().rank},   {"seconds", seconds},
+                               {"stream_bytes", stream.size()}, {"frames", frames}};
+  M4D_RETURN_IF_ERROR(WriteJson(ChunkPath(chunked.checkpoint_dir, c, "json"), json));
+  std::printf("%schunk %zu (frames %d-%d) coded in %.1f s, %.2f KB\n", RankPrefix().c_str(), c,
+              chunk.first, chunk.first + chunk.count - 1, seconds,
+              static_cast<double>(stream.size()) / 1000.0);
+  return Status::Ok();
+}
+
+// Rank 0: the chunks' streams in order, one stream, and their frames' reports.
+Status JoinChunks(const std::string& dir, const std::vector<Chunk>& chunks,
+                  ChunkedEncodeResult* result) {
+  for (size_t c = 0; c < chunks.size(); ++c) {
+    nlohmann::json json;
+    std::vector<uint8_t> bytes;
+    M4D_RETURN_IF_ERROR(ReadJson(ChunkPath(dir, c, "json"), &json));
+    M4D_RETURN_IF_ERROR(ReadFileBytes(ChunkPath(dir, c, "m4d"), kMaxCheckpointBytes, &bytes));
+    const nlohmann::json& frames = json.at("frames");
+    if (frames.size() != static_cast<size_t>(chunks[c].count) ||
+        json.value("stream_bytes", size_t{0}) != bytes.size()) {
+      return Status(M4D_ERR_INVALID_ARG, ChunkPath(dir, c, "json") + ": not this chunk's report");
+    }
+    for (const nlohmann::json& f : frames) {
+      result->report.frames.emplace_back();
+      M4D_RETURN_IF_ERROR(FrameReportFromJson(f, &result->report.frames.back()));
+    }
+    result->stream.insert(result->stream.end(), bytes.begin(), bytes.end());
+    result->chunk_table.push_back({{"chunk", c},
+                                   {"first", chunks[c].first},
+                                   {"count", chunks[c].count},
+                                   {"rank", json.value("rank", 0)},
+                                   {"seconds", json.value("seconds", 0.0)},
+                                   {"bytes", bytes.size()}});
+  }
+  result->report.stream_bytes = result->stream.size();
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::vector<Chunk> PlanChunks(int first, int frames, int chunk_frames) {
+  std::vector<Chunk> chunks;
+  const int length = chunk_frames > 0 ? chunk_frames : std::max(1, frames);
+  for (int f = 0; f < frames; f += length)
+    chunks.push_back({first + f, std::min(length, frames - f)});
+  return chunks;
+}
+
+Status RunChunkedEncode(const Capture& capture, const EncoderOptions& options,
+                        const ChunkedEncodeOptions& chunked, const EncoderCallbacks& callbacks,
+                        ChunkedEncodeResult* result) {
+  *result = ChunkedEncodeResult();
+  const Ranks& ranks = CurrentRanks();
+  const int first = options.first_frame;
+  const int frames = options.frame_count > 0
+                         ? std::min(options.frame_count, capture.frame_count - first)
+                         : capture.frame_count - first;
+  if (frames <= 0) return Status(M4D_ERR_INVALID_ARG, "encoder: first frame beyond the capture");
+  // Under MPI without a chunk length: one chunk per rank.
+  const int length =
+      chunked.chunk_frames > 0 ? chunked.chunk_frames : (frames + ranks.size - 1) / ranks.size;
+  const std::vector<Chunk> chunks = PlanChunks(first, frames, length);
+  result->chunks = chunks.size();
+  const std::string& dir = chunked.checkpoint_dir;
+  Status status = ranks.rank == 0 ? CheckSettings(dir, chunked.settings) : Status::Ok();
+  if (!AllRanksOk(status.ok())) {
+    return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 refused the checkpoint directory")
+                       : status;
+  }
+  // Every rank lists the unfinished chunks before any rank codes one: they agree on the list.
+  std::vector<size_t> todo;
+  for (size_t c = 0; c < chunks.size(); ++c) {
+    if (!ChunkDone(dir, c, chunks[c])) todo.push_back(c);
+  }
+  AllRanksOk(true);
+  if (ranks.rank == 0 && todo.size() < chunks.size()) {
+    std::printf("%zu of %zu chunks already done in %s\n", chunks.size() - todo.size(),
+                chunks.size(), dir.c_str());
+  }
+  for (size_t k = static_cast<size_t>(ranks.rank); k < todo.size() && status.ok();
+       k += static_cast<size_t>(ranks.size)) {
+    if (chunked.max_chunks > 0 &&
+        result->chunks_coded_here >= static_cast<size_t>(chunked.max_chunks)) {
+      break;
+    }
+    status = EncodeChunk(capture, options, todo[k], chunks[todo[k]], static_cast<uint32_t>(frames),
+                         chunked, callbacks);
+    if (status.ok()) ++result->chunks_coded_here;
+  }
+  if (!status.ok()) {
+    std::fprintf(stderr, "%s%s\n", RankPrefix().c_str(), status.message().c_str());
+  }
+  const bool all_ok = AllRanksOk(status.ok());
+  for (size_t c = 0; c < chunks.size(); ++c) result->chunks_done += ChunkDone(dir, c, chunks[c]);
+  if (!all_ok) {
+    return status.ok() ? Status(M4D_ERR_INVALID_ARG, "another rank failed (its message above)")
+                       : status;
+  }
+  result->complete = result->chunks_done == chunks.size();
+  if (!result->complete || ranks.rank != 0) return Status::Ok();
+  return JoinChunks(dir, chunks, result);
+}
+
+}  // namespace m4d
