@@ -19,7 +19,9 @@
 #include "layers/mlp_writer.h"
 #include "layers/motion_grid.h"
 #include "layers/motion_grid_writer.h"
+#include "layers/same_gaussian_set.h"
 #include "pipeline/retraining_growth.h"
+#include "pipeline/training_psnr_meter.h"
 #include "train/gaussian_model.h"
 #include "train/keyframe_trainer.h"
 #include "train/scene_extent.h"
@@ -46,7 +48,8 @@ struct SequenceEncoder::Gop {
   bool mlp_trained = false;
   float scene_extent = 1.0f;
   FrameReport keyframe_report;  // its training_psnr is what the adaptive GOP compares with
-  double noise_gap = 0;         // NoiseGap, measured at the first inter frame
+  std::unique_ptr<TrainingPsnrMeter> meter;  // of static_set, once it is decoded
+  double noise_gap = 0;                      // NoiseGap, measured at the first inter frame
 };
 
 namespace {
@@ -119,11 +122,6 @@ void SkipMotion(FloatMotionGrid* grid) {
     grid->box_scale[a] = 1.0f;
   }
   for (std::vector<float>& level : grid->values) std::fill(level.begin(), level.end(), 0.0f);
-}
-
-bool SameSet(const GaussianSet& a, const GaussianSet& b) {
-  return a.sh_degree == b.sh_degree && a.positions == b.positions && a.log_scales == b.log_scales &&
-         a.rotations == b.rotations && a.opacity_logits == b.opacity_logits && a.sh == b.sh;
 }
 
 // A model of both sets, static first, at the stream's SH degree.
@@ -377,8 +375,9 @@ Status SequenceEncoder::StartDependentGop(int frame, GaussianModel model, Gaussi
 
 Status SequenceEncoder::FinishGopStart(int frame, const TrainingViews& views) {
   Gop& gop = *gop_;
-  M4D_RETURN_IF_ERROR(
-      TrainingPsnr(views, gop.static_set, gop.dynamic_set, &gop.keyframe_report.training_psnr));
+  gop.meter = std::make_unique<TrainingPsnrMeter>(gop.static_set, Settings());
+  M4D_RETURN_IF_ERROR(gop.meter->StartFrame(views));
+  M4D_RETURN_IF_ERROR(gop.meter->Measure(gop.dynamic_set, &gop.keyframe_report.training_psnr));
   gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
   estimator_->StartGop(options_.seed + static_cast<uint64_t>(frame));
   gop.mlp = estimator_->mlp();
@@ -399,8 +398,8 @@ Status SequenceEncoder::WriteKeyframe() {
     M4D_RETURN_IF_ERROR(
         writer_->WriteKeyframe(gop.static_coded, gop.dynamic_coded, gop.mlp, &recon));
   }
-  if (!SameSet(*recon.static_layer, gop.static_set) ||
-      !SameSet(*recon.dynamic_layer, gop.dynamic_set)) {
+  if (!SameGaussianSet(*recon.static_layer, gop.static_set) ||
+      !SameGaussianSet(*recon.dynamic_layer, gop.dynamic_set)) {
     return Status(M4D_ERR_BITSTREAM, "encoder: keyframe reconstruction differs from the decoder's");
   }
   gop.keyframe_pending = false;
@@ -428,6 +427,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   report.frame_index = static_cast<uint32_t>(frame);
   TrainingViews views;
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture_, frame, capture_.TrainCameras(), &views));
+  M4D_RETURN_IF_ERROR(gop.meter->StartFrame(views));
 
   // Motion estimation, then the decoder's moved set.
   Clock::time_point start = Clock::now();
@@ -462,12 +462,11 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   if (motion_on && !motion.appearance.empty()) {
     appearance.step = options_.motion.appearance_step;
     appearance.values.assign(motion.appearance.begin(), motion.appearance.end());
-    M4D_RETURN_IF_ERROR(DecideAppearance(views, gop.static_set, appearance, &moved, &report));
+    M4D_RETURN_IF_ERROR(DecideAppearance(appearance, &moved, &report));
   }
   if (motion_on) {
     bool skip = false;
-    M4D_RETURN_IF_ERROR(
-        DecideMotion(views, gop.static_set, gop.dynamic_set, moved, &skip, &report));
+    M4D_RETURN_IF_ERROR(DecideMotion(gop.dynamic_set, moved, &skip, &report));
     if (skip) {
       SkipMotion(&coded_grid);
       moved = gop.dynamic_set;
@@ -501,7 +500,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     M4D_RETURN_IF_ERROR(
         TrainCompensation(views, gop.static_set, moved, candidates, o, &compensation));
   }
-  M4D_RETURN_IF_ERROR(DecideCompensation(views, gop.static_set, moved, &compensation, &report));
+  M4D_RETURN_IF_ERROR(DecideCompensation(moved, &compensation, &report));
   report.seconds.compensation = Since(start);
   report.added = compensation.added.size();
   for (uint8_t r : compensation.removed) report.removed += r;
@@ -527,7 +526,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   if (!report.appearance_skipped) {
     M4D_RETURN_IF_ERROR(writer_->WriteAppearance(appearance.step, motion.appearance));
   }
-  if (!SameSet(writer_->moved_dynamic_set(), moved)) {
+  if (!SameGaussianSet(writer_->moved_dynamic_set(), moved)) {
     return Status(M4D_ERR_BITSTREAM, "encoder: moved set differs from the decoder's");
   }
   DecodedFrame recon;
@@ -651,46 +650,43 @@ Status SequenceEncoder::NoiseGap(const TrainingViews& next, double* gap) {
   return Status::Ok();
 }
 
-Status SequenceEncoder::DecideMotion(const TrainingViews& views, const GaussianSet& static_set,
-                                     const GaussianSet& still, const GaussianSet& moved, bool* skip,
+Status SequenceEncoder::DecideMotion(const GaussianSet& still, const GaussianSet& moved, bool* skip,
                                      FrameReport* report) {
   double with = 0, without = 0;
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, moved, &with));
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, still, &without));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(moved, &with));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(still, &without));
   report->motion_gain = with - without;
   *skip = !(report->motion_gain > options_.motion_min_gain);
   report->motion_skipped = *skip;
   return Status::Ok();
 }
 
-Status SequenceEncoder::DecideAppearance(const TrainingViews& views, const GaussianSet& static_set,
-                                         const AppearanceUpdate& appearance, GaussianSet* moved,
+Status SequenceEncoder::DecideAppearance(const AppearanceUpdate& appearance, GaussianSet* moved,
                                          FrameReport* report) {
   GaussianSet changed = *moved;
   ApplyAppearanceUpdate(appearance, &changed);
   double with = 0, without = 0;
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, changed, &with));
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, *moved, &without));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(changed, &with));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(*moved, &without));
   report->appearance_gain = with - without;
   report->appearance_skipped = !(report->appearance_gain > options_.appearance_min_gain);
   if (!report->appearance_skipped) *moved = std::move(changed);
   return Status::Ok();
 }
 
-Status SequenceEncoder::DecideCompensation(const TrainingViews& views,
-                                           const GaussianSet& static_set, const GaussianSet& moved,
+Status SequenceEncoder::DecideCompensation(const GaussianSet& moved,
                                            CompensationResult* compensation, FrameReport* report) {
   GaussianSet coded;  // the frame with its compensation, before the compensation's quantization
   coded.sh_degree = moved.sh_degree;
   AppendKept(moved, &compensation->removed, &coded);
   AppendKept(compensation->added, nullptr, &coded);
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, coded, &report->training_psnr));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(coded, &report->training_psnr));
   if (compensation->added.size() == 0 &&
       std::count(compensation->removed.begin(), compensation->removed.end(), 1) == 0) {
     return Status::Ok();
   }
   double without = 0;
-  M4D_RETURN_IF_ERROR(TrainingPsnr(views, static_set, moved, &without));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(moved, &without));
   report->compensation_gain = report->training_psnr - without;
   if (report->compensation_gain >= options_.compensation_min_gain) return Status::Ok();
   compensation->removed.assign(moved.size(), 0);
@@ -699,15 +695,8 @@ Status SequenceEncoder::DecideCompensation(const TrainingViews& views,
   return Status::Ok();
 }
 
-Status SequenceEncoder::TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,
-                                     const GaussianSet& dynamic_set, double* psnr) {
-  GaussianModel model;
-  M4D_RETURN_IF_ERROR(CombinedModel(static_set, dynamic_set, &model));
-  EvaluationResult result;
-  RenderContext context;
-  M4D_RETURN_IF_ERROR(EvaluateViews(model, views, Settings(), &context, &result));
-  *psnr = result.mean_psnr;
-  return Status::Ok();
+Status SequenceEncoder::TrainingPsnr(const GaussianSet& dynamic_set, double* psnr) {
+  return gop_->meter->Measure(dynamic_set, psnr);
 }
 
 Status SequenceEncoder::Evaluate(int frame, const GaussianSet& static_set,

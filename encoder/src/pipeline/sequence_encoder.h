@@ -109,22 +109,19 @@ class SequenceEncoder {
   // again. On real captures the motion of
   // an over-dynamic keyframe can make a frame worse than doing nothing (30.88 dB against
   // 33.4-39.3 dB on a classroom capture); a skipped frame's grid is SkipMotion's.
-  Status DecideMotion(const TrainingViews& views, const GaussianSet& static_set,
-                      const GaussianSet& still, const GaussianSet& moved, bool* skip,
+  Status DecideMotion(const GaussianSet& still, const GaussianSet& moved, bool* skip,
                       FrameReport* report);
   // Applies the frame's colour change to *moved when it raises the training views' PSNR by
   // more than options_.appearance_min_gain (sets report's appearance gain and skip flag).
-  Status DecideAppearance(const TrainingViews& views, const GaussianSet& static_set,
-                          const AppearanceUpdate& appearance, GaussianSet* moved,
+  Status DecideAppearance(const AppearanceUpdate& appearance, GaussianSet* moved,
                           FrameReport* report);
   // Sets report's training PSNR and compensation gain; drops the compensation (nothing added
   // or removed) when it gains less than options_.compensation_min_gain.
-  Status DecideCompensation(const TrainingViews& views, const GaussianSet& static_set,
-                            const GaussianSet& moved, CompensationResult* compensation,
+  Status DecideCompensation(const GaussianSet& moved, CompensationResult* compensation,
                             FrameReport* report);
-  // Mean PSNR of both sets over the views (the adaptive GOP's quality measure).
-  Status TrainingPsnr(const TrainingViews& views, const GaussianSet& static_set,
-                      const GaussianSet& dynamic_set, double* psnr);
+  // Mean PSNR over the frame's training views of the GOP's static set with dynamic_set (the
+  // adaptive GOP's quality measure; TrainingPsnrMeter).
+  Status TrainingPsnr(const GaussianSet& dynamic_set, double* psnr);
   RenderSettings Settings() const;
 
   const Capture& capture_;

@@ -1,0 +1,98 @@
+#include "pipeline/training_psnr_meter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "layers/same_gaussian_set.h"
+#include "render/projection_constants.h"
+#include "render/splat_renderer.h"
+
+namespace m4d {
+namespace {
+
+// Squared error of the (clamped) colours against the image, per tile.
+void TileErrors(const float* color, const Image& image, int tiles_x, int tiles_y,
+                std::vector<double>* errors) {
+  errors->assign(static_cast<size_t>(tiles_x) * tiles_y, 0.0);
+  for (int y = 0; y < image.height; ++y) {
+    const float* c = color + static_cast<size_t>(y) * image.width * 3;
+    const float* t = image.row(y);
+    double* row = errors->data() + static_cast<size_t>(y / kTileSize) * tiles_x;
+    for (int x = 0; x < image.width; ++x) {
+      double e = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = static_cast<double>(std::clamp(c[3 * x + k], 0.0f, 1.0f)) - t[3 * x + k];
+        e += d * d;
+      }
+      row[x / kTileSize] += e;
+    }
+  }
+}
+
+double PsnrFromSquaredError(double error, size_t samples) {
+  if (error == 0) return std::numeric_limits<double>::infinity();
+  return -10.0 * std::log10(error / static_cast<double>(samples));
+}
+
+}  // namespace
+
+TrainingPsnrMeter::TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings)
+    : static_set_(static_set), settings_(settings) {}
+
+Status TrainingPsnrMeter::RenderStatic() {
+  static_color_.resize(views_->size());
+  const GaussianLayerView layer = LayerView(static_set_);
+  for (int v = 0; v < views_->size(); ++v) {
+    M4D_RETURN_IF_ERROR(
+        RenderForward(views_->cameras[v], &layer, 1, settings_, nullptr, &context_));
+    static_color_[v] = context_.color;
+  }
+  return Status::Ok();
+}
+
+Status TrainingPsnrMeter::StartFrame(const TrainingViews& views) {
+  views_ = &views;
+  measured_.clear();
+  if (static_color_.size() != static_cast<size_t>(views.size())) {
+    M4D_RETURN_IF_ERROR(RenderStatic());
+  }
+  static_error_.resize(views.size());
+  for (int v = 0; v < views.size(); ++v) {
+    const Camera& camera = views.cameras[v];
+    TileErrors(static_color_[v].data(), views.images[v], (camera.width + kTileSize - 1) / kTileSize,
+               (camera.height + kTileSize - 1) / kTileSize, &static_error_[v]);
+  }
+  return Status::Ok();
+}
+
+Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) {
+  if (!views_) return Status(M4D_ERR_INVALID_ARG, "training PSNR: no frame started");
+  for (const Measured& m : measured_) {
+    if (SameGaussianSet(m.set, dynamic_set)) {
+      *psnr = m.psnr;
+      return Status::Ok();
+    }
+  }
+  RenderSettings focused = settings_;
+  focused.focus_layer = 1;
+  const GaussianLayerView layers[2] = {LayerView(static_set_), LayerView(dynamic_set)};
+  double sum = 0;
+  std::vector<double> errors;
+  for (int v = 0; v < views_->size(); ++v) {
+    const Camera& camera = views_->cameras[v];
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, &context_));
+    const TileFocus& focus = context_.focus;
+    TileErrors(context_.color.data(), views_->images[v], focus.tiles_x, focus.tiles_y, &errors);
+    double error = 0;
+    for (size_t t = 0; t < errors.size(); ++t) {
+      error += focus.rendered(t) ? errors[t] : static_error_[v][t];
+    }
+    sum += PsnrFromSquaredError(error, views_->images[v].pixels.size());
+  }
+  *psnr = sum / std::max(1, views_->size());
+  measured_.push_back({dynamic_set, *psnr});
+  return Status::Ok();
+}
+
+}  // namespace m4d

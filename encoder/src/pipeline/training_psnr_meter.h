@@ -1,0 +1,52 @@
+// TrainingPsnrMeter: the mean PSNR over a frame's training views of the GOP's static set with
+// a dynamic set, the measure of the inter-frame mode decisions and of the adaptive GOP. The
+// static set and the cameras stay for the GOP, so each view's static-only render is made once;
+// a measure then renders only the tiles the dynamic set reaches (render/tile_focus.h) and takes
+// every other tile's error from the static render, which is what the whole render holds there.
+// PSNR as view_evaluation.h measures it (renders clamped to [0, 1], mean over views), without
+// its SSIM. A frame's decisions measure the same set more than once: results are kept for the
+// frame.
+#ifndef M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
+#define M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
+
+#include <vector>
+
+#include "common/status.h"
+#include "layers/gaussian_set.h"
+#include "render/render_context.h"
+#include "render/render_settings.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+class TrainingPsnrMeter {
+ public:
+  // static_set must outlive the meter and stay unchanged (the GOP's).
+  TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings);
+
+  // The training views of the frame being measured (kept by reference until the next call);
+  // their cameras must be the GOP's.
+  Status StartFrame(const TrainingViews& views);
+
+  // Mean PSNR over the views of the static set with dynamic_set (dB).
+  Status Measure(const GaussianSet& dynamic_set, double* psnr);
+
+ private:
+  Status RenderStatic();
+
+  const GaussianSet& static_set_;
+  RenderSettings settings_;
+  const TrainingViews* views_ = nullptr;
+  RenderContext context_;
+  std::vector<std::vector<float>> static_color_;   // per view, clamped
+  std::vector<std::vector<double>> static_error_;  // per view and tile: squared error
+  struct Measured {
+    GaussianSet set;
+    double psnr;
+  };
+  std::vector<Measured> measured_;
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
