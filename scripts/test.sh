@@ -8,13 +8,20 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-scripts/setup.sh
-scripts/build.sh
-scripts/check_format.sh
-scripts/compare_builds.sh
+# Each step's wall time, so that a slow run says where its time went.
+timed() {
+  local start=$SECONDS
+  "$@"
+  echo "test.sh: ${1##*/} took $((SECONDS - start)) s"
+}
+
+timed scripts/setup.sh
+timed scripts/build.sh
+timed scripts/check_format.sh
+timed scripts/compare_builds.sh
 scripts/conformance_run.sh --layers-flag --layers build/release/tools/m4d_decode | tail -1
-scripts/test_web.sh
-scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
-ctest --test-dir build/release --output-on-failure -j2
-scripts/check_install.sh
-scripts/sanitize.sh
+timed scripts/test_web.sh
+timed scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
+timed ctest --test-dir build/release --output-on-failure -j2
+timed scripts/check_install.sh
+timed scripts/sanitize.sh

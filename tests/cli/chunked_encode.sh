@@ -1,8 +1,8 @@
 #!/bin/sh
 # Chunked encoding end to end on a tiny generated scene (chunked_encode.h):
-#   chunked_encode.sh M4D DIR [MPIEXEC]
+#   chunked_encode.sh M4D M4D_CHECK DIR [MPIEXEC]
 # One process codes 4 frames in 2 chunks, each from a random-access keyframe, into a stream the
-# SDK decodes to the encoder's hashes. A run stopped after one chunk writes no stream and keeps
+# SDK decodes to the encoder's hashes and the stream checker passes. A run stopped after one chunk writes no stream and keeps
 # the chunk; the same command then codes only the other one, and the stream is byte for byte
 # the uninterrupted run's. A chunk whose process died between its stream and its report is
 # coded again. A checkpoint directory of other settings is refused. With MPIEXEC, two ranks
@@ -10,8 +10,9 @@
 # rank's chunk is coded again on resume.
 set -eu
 m4d=$1
-dir=$2
-mpiexec=${3:-}
+check=$2
+dir=$3
+mpiexec=${4:-}
 opts="--keyframe-iterations 60 --retrain-iterations 20 --motion-iterations 5 \
 --compensation-iterations 5 --lookahead 1 --max-gaussians 3000 --chunk-frames 2"
 rm -rf "$dir"
@@ -22,6 +23,7 @@ hashes() { grep '"hash"' "$1"; }
 
 "$m4d" encode "$dir/scene" -o "$dir/one.m4d" $opts > "$dir/one.txt"
 grep -q 'every hash equal' "$dir/one.txt"
+"$check" "$dir/one.m4d" | grep -q '^conforms'
 test "$(grep -c '"random_access": true' "$dir/one.m4d.json")" -eq 2
 test "$(grep -c '"chunk":' "$dir/one.m4d.json")" -eq 2
 

@@ -19,7 +19,9 @@ namespace m4d {
 // Renders layers[0..layer_count) together (Gaussians indexed globally in concatenation
 // order) into context: colour, alpha and per-Gaussian projection results, plus, when
 // settings.blend_weights, each Gaussian's blend weight, and when error_image (width * height
-// floats) is not null, each Gaussian's error-weighted blend weight. Fails with
+// floats) is not null, each Gaussian's error-weighted blend weight. With settings.focus_layer
+// only the focus tiles are rendered (tile_focus.h; context->focus says which), and a backward
+// pass needs the layers before focus_layer frozen. Fails with
 // M4D_ERR_INVALID_ARG for a null context, a bad camera (ValidateCamera), a bad setting or an
 // inconsistent layer (null arrays, SH degree above 3), M4D_ERR_LIMIT beyond
 // kMaxRenderGaussians Gaussians or kMaxTileEntries (splat, tile) pairs, M4D_ERR_NOMEM when
