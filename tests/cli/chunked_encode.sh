@@ -4,8 +4,8 @@
 # One process codes 4 frames in 2 chunks, each from a random-access keyframe, into a stream the
 # SDK decodes to the encoder's hashes and the stream checker passes. A run stopped after one chunk writes no stream and keeps
 # the chunk; the same command then codes only the other one, and the stream is byte for byte
-# the uninterrupted run's. A chunk whose process died between its stream and its report is
-# coded again. A checkpoint directory of other settings is refused. With MPIEXEC, two ranks
+# the uninterrupted run's. A chunk whose process died between its stream and its report, or
+# whose report is damaged, is coded again. A checkpoint directory of other settings is refused. With MPIEXEC, two ranks
 # code one chunk each into the same stream (so the same decode, frame by frame), and a killed
 # rank's chunk is coded again on resume.
 set -eu
@@ -40,6 +40,11 @@ cmp "$dir/one.m4d" "$dir/resumed.m4d"
 rm "$dir/resumed.m4d" "$dir/resumed.m4d.chunks/chunk_00001.json"
 "$m4d" encode "$dir/scene" -o "$dir/resumed.m4d" $opts > "$dir/redone.txt"
 grep -q 'chunk 1 (frames 2-3) coded' "$dir/redone.txt"
+cmp "$dir/one.m4d" "$dir/resumed.m4d"
+rm "$dir/resumed.m4d"
+echo '{"first": "damaged"}' > "$dir/resumed.m4d.chunks/chunk_00001.json"
+"$m4d" encode "$dir/scene" -o "$dir/resumed.m4d" $opts > "$dir/damaged.txt"
+grep -q 'chunk 1 (frames 2-3) coded' "$dir/damaged.txt"
 cmp "$dir/one.m4d" "$dir/resumed.m4d"
 
 if "$m4d" encode "$dir/scene" -o "$dir/other.m4d" --checkpoint-dir "$dir/resumed.m4d.chunks" \

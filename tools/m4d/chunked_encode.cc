@@ -65,8 +65,13 @@ bool ChunkDone(const std::string& dir, size_t c, const Chunk& chunk) {
   if (!ReadJson(ChunkPath(dir, c, "json"), &json).ok()) return false;
   std::error_code ec;
   const auto size = std::filesystem::file_size(ChunkPath(dir, c, "m4d"), ec);
-  return !ec && json.value("first", -1) == chunk.first && json.value("count", -1) == chunk.count &&
-         json.value("stream_bytes", size_t{0}) == size;
+  try {
+    return !ec && json.value("first", -1) == chunk.first &&
+           json.value("count", -1) == chunk.count &&
+           json.value("stream_bytes", size_t{0}) == size && json.at("frames").is_array();
+  } catch (const nlohmann::json::exception&) {
+    return false;  // not a report this code wrote: the chunk is coded again
+  }
 }
 
 Status EncodeChunk(const Capture& capture, const EncoderOptions& options, size_t c,
@@ -98,30 +103,42 @@ Status EncodeChunk(const Capture& capture, const EncoderOptions& options, size_t
   return Status::Ok();
 }
 
-// Rank 0: the chunks' streams in order, one stream, and their frames' reports.
-Status JoinChunks(const std::string& dir, const std::vector<Chunk>& chunks,
-                  ChunkedEncodeResult* result) {
-  for (size_t c = 0; c < chunks.size(); ++c) {
-    nlohmann::json json;
-    std::vector<uint8_t> bytes;
-    M4D_RETURN_IF_ERROR(ReadJson(ChunkPath(dir, c, "json"), &json));
-    M4D_RETURN_IF_ERROR(ReadFileBytes(ChunkPath(dir, c, "m4d"), kMaxCheckpointBytes, &bytes));
+// Rank 0: chunk c's stream appended to the joined one, its frames' reports and its table row.
+Status JoinChunk(const std::string& dir, size_t c, const Chunk& chunk,
+                 ChunkedEncodeResult* result) {
+  nlohmann::json json;
+  std::vector<uint8_t> bytes;
+  M4D_RETURN_IF_ERROR(ReadJson(ChunkPath(dir, c, "json"), &json));
+  M4D_RETURN_IF_ERROR(ReadFileBytes(ChunkPath(dir, c, "m4d"), kMaxCheckpointBytes, &bytes));
+  const Status bad(M4D_ERR_INVALID_ARG, ChunkPath(dir, c, "json") + ": not this chunk's report");
+  try {
     const nlohmann::json& frames = json.at("frames");
-    if (frames.size() != static_cast<size_t>(chunks[c].count) ||
-        json.value("stream_bytes", size_t{0}) != bytes.size()) {
-      return Status(M4D_ERR_INVALID_ARG, ChunkPath(dir, c, "json") + ": not this chunk's report");
+    if (!frames.is_array() || frames.size() != static_cast<size_t>(chunk.count) ||
+        json.at("stream_bytes").get<size_t>() != bytes.size()) {
+      return bad;
     }
     for (const nlohmann::json& f : frames) {
       result->report.frames.emplace_back();
       M4D_RETURN_IF_ERROR(FrameReportFromJson(f, &result->report.frames.back()));
     }
-    result->stream.insert(result->stream.end(), bytes.begin(), bytes.end());
     result->chunk_table.push_back({{"chunk", c},
-                                   {"first", chunks[c].first},
-                                   {"count", chunks[c].count},
-                                   {"rank", json.value("rank", 0)},
-                                   {"seconds", json.value("seconds", 0.0)},
+                                   {"first", chunk.first},
+                                   {"count", chunk.count},
+                                   {"rank", json.at("rank").get<int>()},
+                                   {"seconds", json.at("seconds").get<double>()},
                                    {"bytes", bytes.size()}});
+  } catch (const nlohmann::json::exception&) {
+    return bad;
+  }
+  result->stream.insert(result->stream.end(), bytes.begin(), bytes.end());
+  return Status::Ok();
+}
+
+// Rank 0: the chunks' streams in order, one stream, and their frames' reports.
+Status JoinChunks(const std::string& dir, const std::vector<Chunk>& chunks,
+                  ChunkedEncodeResult* result) {
+  for (size_t c = 0; c < chunks.size(); ++c) {
+    M4D_RETURN_IF_ERROR(JoinChunk(dir, c, chunks[c], result));
   }
   result->report.stream_bytes = result->stream.size();
   return Status::Ok();
