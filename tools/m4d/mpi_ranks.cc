@@ -10,7 +10,9 @@ namespace m4d {
 namespace {
 
 Ranks g_ranks;
-bool g_joined = false;
+#ifdef M4D_HAVE_MPI
+bool g_joined = false;  // MPI_Init succeeded
+#endif
 
 // The rank count a launcher announced (Open MPI's mpirun, PMIx as srun --mpi=pmix starts
 // it, or PMI): 0 when none started this process.
