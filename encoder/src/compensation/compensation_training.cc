@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "metrics/focused_loss.h"
+#include "render/frozen_layer_projections.h"
 #include "render/splat_backward.h"
 #include "render/splat_renderer.h"
 #include "render/viewspace_gradient.h"
@@ -50,12 +51,16 @@ GaussianSet KeepOnly(const GaussianSet& set, const std::vector<uint8_t>& removed
 
 float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
 
-// Total blend weight of every Gaussian of the layers over all views.
+// Total blend weight of every Gaussian of the layers over all views (layer 0 the static one).
 Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
-                    RenderSettings settings, RenderContext* context, std::vector<float>* total) {
+                    RenderSettings settings, FrozenLayerProjections* static_projections,
+                    RenderContext* context, std::vector<float>* total) {
   settings.blend_weights = true;
   for (int v = 0; v < views.size(); ++v) {
-    M4D_RETURN_IF_ERROR(RenderForward(views.cameras[v], layers, count, settings, nullptr, context));
+    const ProjectedSplats* static_projection = nullptr;
+    M4D_RETURN_IF_ERROR(static_projections->For(v, views.cameras[v], &static_projection));
+    M4D_RETURN_IF_ERROR(RenderForward(views.cameras[v], layers, count, settings, nullptr,
+                                      static_projection, context));
     if (v == 0) total->assign(context->blend_weight.size(), 0.0f);
     for (size_t g = 0; g < total->size(); ++g) (*total)[g] += context->blend_weight[g];
   }
@@ -111,13 +116,15 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   }
   const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
   RenderContext context;
+  FrozenLayerProjections static_projections(LayerView(static_set), options.sh_degree, views.size());
 
   // Moved Gaussians that no training view sees are removed with the split parents.
   result->removed = candidates.removed;
   {
     const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, &context, &weight));
+    M4D_RETURN_IF_ERROR(
+        BlendWeights(views, layers, 2, settings, &static_projections, &context, &weight));
     result->removed_unseen = 0;
     for (size_t i = 0; i < moved.size(); ++i) {
       if (!result->removed[i] && weight[static_set.size() + i] < options.min_blend_weight) {
@@ -168,7 +175,10 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     const int view = order[cursor++];
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     const Camera& camera = views.cameras[view];
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 3, focused, nullptr, &context));
+    const ProjectedSplats* static_projection = nullptr;
+    M4D_RETURN_IF_ERROR(static_projections.For(view, camera, &static_projection));
+    M4D_RETURN_IF_ERROR(
+        RenderForward(camera, layers, 3, focused, nullptr, static_projection, &context));
     CopyRender(camera, context, &rendered);
     PhotometricLossValue value;
     M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], context.focus, &value, &grad));
@@ -187,7 +197,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   if (model.size() > 0) {
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, &context, &weight));
+    M4D_RETURN_IF_ERROR(
+        BlendWeights(views, layers, 3, settings, &static_projections, &context, &weight));
     std::vector<uint8_t> keep(model.size());
     const size_t offset = static_set.size() + kept.size();
     for (size_t i = 0; i < model.size(); ++i) {

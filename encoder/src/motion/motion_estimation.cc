@@ -6,6 +6,7 @@
 
 #include "metrics/focused_loss.h"
 #include "motion/appearance_estimation.h"
+#include "render/frozen_layer_projections.h"
 #include "render/splat_renderer.h"
 #include "train/adam_optimizer.h"
 #include "train/training_random.h"
@@ -152,6 +153,7 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   std::copy(options.background, options.background + 3, settings.background);
   settings.focus_layer = 1;  // the static layer alone is the same in every step
   RenderContext context;
+  FrozenLayerProjections static_projections(LayerView(static_set), options.sh_degree, views.size());
   BackwardWorkspace workspace;
   FocusedLoss loss(options.ssim_weight);
   Image rendered, loss_grad;
@@ -211,7 +213,10 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
       }
       const int view = order[cursor++];
       const Camera& camera = views.cameras[view];
-      M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
+      const ProjectedSplats* static_projection = nullptr;
+      M4D_RETURN_IF_ERROR(static_projections.For(view, camera, &static_projection));
+      M4D_RETURN_IF_ERROR(
+          RenderForward(camera, layers, 2, settings, nullptr, static_projection, &context));
       rendered.width = camera.width;
       rendered.height = camera.height;
       rendered.channels = 3;

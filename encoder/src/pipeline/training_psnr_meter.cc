@@ -40,12 +40,22 @@ double PsnrFromSquaredError(double error, size_t samples) {
 TrainingPsnrMeter::TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings)
     : static_set_(static_set), settings_(settings) {}
 
+Status TrainingPsnrMeter::StaticProjection(int view, const ProjectedSplats** projection) {
+  if (!static_projections_) {
+    static_projections_ = std::make_unique<FrozenLayerProjections>(
+        LayerView(static_set_), settings_.sh_degree, views_->size());
+  }
+  return static_projections_->For(view, views_->cameras[view], projection);
+}
+
 Status TrainingPsnrMeter::RenderStatic() {
   static_color_.resize(views_->size());
   const GaussianLayerView layer = LayerView(static_set_);
   for (int v = 0; v < views_->size(); ++v) {
+    const ProjectedSplats* projection = nullptr;
+    M4D_RETURN_IF_ERROR(StaticProjection(v, &projection));
     M4D_RETURN_IF_ERROR(
-        RenderForward(views_->cameras[v], &layer, 1, settings_, nullptr, &context_));
+        RenderForward(views_->cameras[v], &layer, 1, settings_, nullptr, projection, &context_));
     static_color_[v] = context_.color;
   }
   return Status::Ok();
@@ -81,7 +91,9 @@ Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) 
   std::vector<double> errors;
   for (int v = 0; v < views_->size(); ++v) {
     const Camera& camera = views_->cameras[v];
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, &context_));
+    const ProjectedSplats* projection = nullptr;
+    M4D_RETURN_IF_ERROR(StaticProjection(v, &projection));
+    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, projection, &context_));
     const TileFocus& focus = context_.focus;
     TileErrors(context_.color.data(), views_->images[v], focus.tiles_x, focus.tiles_y, &errors);
     double error = 0;

@@ -1,18 +1,21 @@
 // TrainingPsnrMeter: the mean PSNR over a frame's training views of the GOP's static set with
 // a dynamic set, the measure of the inter-frame mode decisions and of the adaptive GOP. The
-// static set and the cameras stay for the GOP, so each view's static-only render is made once;
-// a measure then renders only the tiles the dynamic set reaches (render/tile_focus.h) and takes
-// every other tile's error from the static render, which is what the whole render holds there.
+// static set and the cameras stay for the GOP, so each view's static-only render and the
+// static set's projection are made once; a measure then renders only the tiles the dynamic set
+// reaches (render/tile_focus.h) and takes every other tile's error from the static render,
+// which is what the whole render holds there.
 // PSNR as view_evaluation.h measures it (renders clamped to [0, 1], mean over views), without
 // its SSIM. A frame's decisions measure the same set more than once: results are kept for the
 // frame.
 #ifndef M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 #define M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 
+#include <memory>
 #include <vector>
 
 #include "common/status.h"
 #include "layers/gaussian_set.h"
+#include "render/frozen_layer_projections.h"
 #include "render/render_context.h"
 #include "render/render_settings.h"
 #include "train/training_views.h"
@@ -33,13 +36,15 @@ class TrainingPsnrMeter {
 
  private:
   Status RenderStatic();
+  Status StaticProjection(int view, const ProjectedSplats** projection);
 
   const GaussianSet& static_set_;
   RenderSettings settings_;
   const TrainingViews* views_ = nullptr;
   RenderContext context_;
-  std::vector<std::vector<float>> static_color_;   // per view, clamped
-  std::vector<std::vector<double>> static_error_;  // per view and tile: squared error
+  std::unique_ptr<FrozenLayerProjections> static_projections_;  // made with the first views
+  std::vector<std::vector<float>> static_color_;                // per view, clamped
+  std::vector<std::vector<double>> static_error_;               // per view and tile: squared error
   struct Measured {
     GaussianSet set;
     double psnr;

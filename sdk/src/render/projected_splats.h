@@ -3,6 +3,7 @@
 #ifndef M4D_RENDER_PROJECTED_SPLATS_H_
 #define M4D_RENDER_PROJECTED_SPLATS_H_
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -33,6 +34,26 @@ struct ProjectedSplats {
     }
     color_clamped.resize(n);
     tile_rect.resize(4 * n);
+  }
+  // Copies splats [begin, end) of `from` to the same indices here (sized to hold them).
+  void CopyRange(const ProjectedSplats& from, size_t begin, size_t end) {
+    std::vector<float> ProjectedSplats::*const fields[] = {
+        &ProjectedSplats::mean_x,  &ProjectedSplats::mean_y,   &ProjectedSplats::depth,
+        &ProjectedSplats::radius,  &ProjectedSplats::extent_x, &ProjectedSplats::extent_y,
+        &ProjectedSplats::conic_a, &ProjectedSplats::conic_b,  &ProjectedSplats::conic_c,
+        &ProjectedSplats::opacity};
+    for (auto field : fields) {
+      std::copy((from.*field).begin() + begin, (from.*field).begin() + end,
+                (this->*field).begin() + begin);
+    }
+    for (int c = 0; c < 3; ++c) {
+      std::copy(from.color[c].begin() + begin, from.color[c].begin() + end,
+                color[c].begin() + begin);
+    }
+    std::copy(from.color_clamped.begin() + begin, from.color_clamped.begin() + end,
+              color_clamped.begin() + begin);
+    std::copy(from.tile_rect.begin() + 4 * begin, from.tile_rect.begin() + 4 * end,
+              tile_rect.begin() + 4 * begin);
   }
 };
 

@@ -61,15 +61,20 @@ void PrepareState(const Camera& camera, const GaussianLayerView* layers, int lay
   for (const GaussianLayerView& v : ctx->layers) ctx->gaussian_count += v.count;
 }
 
-void Project(const ProjectionConstants& pc, RenderContext* ctx) {
+// Projects every layer, or copies the first one's given projection.
+void Project(const ProjectionConstants& pc, const ProjectedSplats* first_layer,
+             RenderContext* ctx) {
   ctx->splats.Resize(ctx->gaussian_count);
   ParallelForChunks(ctx->pool.get(), ctx->gaussian_count, kGaussianChunk,
                     [&](size_t begin, size_t end, int) {
                       size_t offset = 0;
-                      for (const GaussianLayerView& layer : ctx->layers) {
+                      for (size_t l = 0; l < ctx->layers.size(); ++l) {
+                        const GaussianLayerView& layer = ctx->layers[l];
                         const size_t lo = std::max(begin, offset);
                         const size_t hi = std::min(end, offset + layer.count);
-                        if (lo < hi) {
+                        if (lo < hi && l == 0 && first_layer) {
+                          ctx->splats.CopyRange(*first_layer, lo, hi);
+                        } else if (lo < hi) {
                           ProjectSplats(pc, layer, ctx->settings.sh_degree, lo - offset,
                                         hi - offset, offset, &ctx->splats);
                         }
@@ -158,15 +163,24 @@ void ReduceBlendWeights(bool blend_weights, bool error_weights, RenderContext* c
 Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      RenderContext* context) {
+  return RenderForward(camera, layers, layer_count, settings, error_image, nullptr, context);
+}
+
+Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+                     const RenderSettings& settings, const float* error_image,
+                     const ProjectedSplats* first_layer, RenderContext* context) {
   if (!context) return InvalidArg("render: null context");
   context->valid = false;
   M4D_RETURN_IF_ERROR(ValidateCamera(camera));
   M4D_RETURN_IF_ERROR(ValidateSettings(settings));
   M4D_RETURN_IF_ERROR(ValidateLayers(layers, layer_count));
+  if (first_layer && (layer_count == 0 || first_layer->size() != layers[0].count)) {
+    return InvalidArg("render: the first layer's projection has another size");
+  }
   try {
     PrepareState(camera, layers, layer_count, settings, context);
     const ProjectionConstants pc = MakeProjectionConstants(camera);
-    Project(pc, context);
+    Project(pc, first_layer, context);
     Focus(pc, context);
     M4D_RETURN_IF_ERROR(
         BinSplats(context->splats, pc.tiles_x, pc.tiles_y, context->pool.get(), &context->bins));
@@ -176,6 +190,20 @@ Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int 
     return Status(M4D_ERR_NOMEM, "render: out of memory");
   }
   context->valid = true;
+  return Status::Ok();
+}
+
+Status ProjectLayer(const Camera& camera, const GaussianLayerView& layer, int sh_degree,
+                    ProjectedSplats* out) {
+  M4D_RETURN_IF_ERROR(ValidateCamera(camera));
+  if (sh_degree < 0 || sh_degree > 3) return InvalidArg("render: SH degree out of range");
+  M4D_RETURN_IF_ERROR(ValidateLayers(&layer, 1));
+  try {
+    out->Resize(layer.count);
+    ProjectSplats(MakeProjectionConstants(camera), layer, sh_degree, 0, layer.count, 0, out);
+  } catch (const std::bad_alloc&) {
+    return Status(M4D_ERR_NOMEM, "render: out of memory");
+  }
   return Status::Ok();
 }
 

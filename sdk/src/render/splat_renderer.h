@@ -11,6 +11,7 @@
 #include "common/status.h"
 #include "render/camera.h"
 #include "render/gaussian_layer_view.h"
+#include "render/projected_splats.h"
 #include "render/render_context.h"
 #include "render/render_settings.h"
 
@@ -29,6 +30,20 @@ namespace m4d {
 Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      RenderContext* context);
+
+// The same render, with layer 0's projection given: `first_layer` must be what ProjectLayer
+// made of layers[0] for this camera and settings.sh_degree (M4D_ERR_INVALID_ARG if its size
+// differs). Training renders a frozen layer (the static one, under motion estimation and
+// compensation) from the same views many times; it is projected once per view instead of
+// once per render. The result is identical.
+Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+                     const RenderSettings& settings, const float* error_image,
+                     const ProjectedSplats* first_layer, RenderContext* context);
+
+// Projects `layer` alone as RenderForward projects its first layer, on the calling thread.
+// Fails as RenderForward does for a bad camera, SH degree or layer.
+Status ProjectLayer(const Camera& camera, const GaussianLayerView& layer, int sh_degree,
+                    ProjectedSplats* out);
 
 }  // namespace m4d
 

@@ -1,0 +1,96 @@
+// A render given its first layer's projection (FrozenLayerProjections, RenderForward with
+// first_layer) is the render that projects every layer, bit for bit, gradients included.
+#include "render/frozen_layer_projections.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "render/render_context.h"
+#include "render/splat_backward.h"
+#include "render/splat_renderer.h"
+#include "splat_test_scenes.h"
+
+namespace m4d {
+namespace {
+
+struct Result {
+  std::vector<float> color, alpha, positions_grad;
+};
+
+// Renders the two layers (the first frozen) with or without the given projection and runs
+// the backward pass with dL/dcolour = 1.
+Result RenderBoth(const Camera& camera, const GaussianLayerView* layers,
+                  const RenderSettings& settings, const ProjectedSplats* first_layer) {
+  RenderContext ctx;
+  EXPECT_TRUE(RenderForward(camera, layers, 2, settings, nullptr, first_layer, &ctx).ok());
+  const size_t n = layers[1].count;
+  std::vector<float> p(3 * n), sc(3 * n), q(4 * n), o(n),
+      sh(n * 3 * ShCoefficients(layers[1].sh_degree));
+  LayerGradients out[2];
+  out[1] = {p.data(), sc.data(), q.data(), o.data(), sh.data()};
+  SplatGradients gradients;
+  gradients.layers = out;
+  gradients.layer_count = 2;
+  BackwardWorkspace ws;
+  const std::vector<float> ones(ctx.color.size(), 1.0f);
+  EXPECT_TRUE(RenderBackward(ones.data(), nullptr, &ctx, gradients, &ws).ok());
+  return {ctx.color, ctx.alpha, p};
+}
+
+class FrozenLayerProjectionsTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(FrozenLayerProjectionsTest, GivenProjectionRendersTheSameBitForBit) {
+  test::SceneOptions background;
+  background.count = 800;
+  background.sh_degree = 2;
+  const GaussianSet static_set = test::RandomGaussians(background, 5);
+  test::SceneOptions cluster = background;
+  cluster.count = 40;
+  cluster.extent = 0.3f;
+  const GaussianSet dynamic_set = test::RandomGaussians(cluster, 6);
+  const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(dynamic_set)};
+  const Camera cameras[2] = {test::TestCamera(160, 120), test::TestCamera(96, 200)};
+  RenderSettings settings;
+  settings.sh_degree = 1;
+  settings.focus_layer = GetParam();
+  FrozenLayerProjections projections(layers[0], settings.sh_degree, 2);
+  for (int v : {1, 0, 1}) {
+    const ProjectedSplats* given = nullptr;
+    ASSERT_TRUE(projections.For(v, cameras[v], &given).ok());
+    ASSERT_EQ(given->size(), static_set.size());
+    const Result expected = RenderBoth(cameras[v], layers, settings, nullptr);
+    const Result got = RenderBoth(cameras[v], layers, settings, given);
+    EXPECT_EQ(got.color, expected.color);
+    EXPECT_EQ(got.alpha, expected.alpha);
+    EXPECT_EQ(got.positions_grad, expected.positions_grad);
+    EXPECT_GT(*std::max_element(got.alpha.begin(), got.alpha.end()), 0.5f);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(WholeImageAndFocus, FrozenLayerProjectionsTest, ::testing::Values(-1, 1));
+
+TEST(FrozenLayerProjectionsTest, MismatchesAreRejected) {
+  test::SceneOptions options;
+  const GaussianSet a = test::RandomGaussians(options, 1);
+  options.count = 7;
+  const GaussianSet b = test::RandomGaussians(options, 2);
+  const Camera camera = test::TestCamera(64, 48);
+  FrozenLayerProjections projections(LayerView(a), 3, 1);
+  const ProjectedSplats* given = nullptr;
+  EXPECT_EQ(projections.For(1, camera, &given).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(projections.For(-1, camera, &given).code(), M4D_ERR_INVALID_ARG);
+  ASSERT_TRUE(projections.For(0, camera, &given).ok());
+  // A projection of another layer's size.
+  const GaussianLayerView layers[2] = {LayerView(b), LayerView(a)};
+  RenderContext ctx;
+  EXPECT_EQ(RenderForward(camera, layers, 2, RenderSettings(), nullptr, given, &ctx).code(),
+            M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(RenderForward(camera, layers, 0, RenderSettings(), nullptr, given, &ctx).code(),
+            M4D_ERR_INVALID_ARG);
+  EXPECT_FALSE(ctx.valid);
+}
+
+}  // namespace
+}  // namespace m4d
