@@ -125,6 +125,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--motion-iterations", o.motion.iterations, "motion estimation per frame")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--first-motion-iterations", o.first_motion_iterations,
+                  "motion estimation of a GOP's first inter frame, which also trains the MLP")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--motion-views-per-step", o.motion.views_per_step,
                   "training views averaged in each motion estimation step")
       ->check(CLI::PositiveNumber)

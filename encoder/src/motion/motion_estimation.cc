@@ -77,27 +77,40 @@ void MotionEstimator::StartGop(uint64_t seed) {
 }
 
 double MotionEstimator::RateAndGradient(const MotionParameters& noisy, double weight,
-                                        MotionParameters* grad,
-                                        std::vector<float>* entropy_grad) const {
+                                        MotionParameters* grad, std::vector<float>* entropy_grad,
+                                        ThreadPool* pool) const {
   // Bits of the whole grid (voxels outside the stencil are zero); gradients are of
   // weight * bits.
   const float scale = static_cast<float>(weight);
-  double bits = 0;
-  int d = 0;
+  float* d_params = entropy_grad ? entropy_grad->data() : nullptr;
+  struct Distribution {
+    int level, channel;
+  };
+  std::vector<Distribution> distributions;
   for (int l = 0; l < config_.num_levels; ++l) {
+    for (int c = 0; c < config_.channels[l]; ++c) distributions.push_back({l, c});
+  }
+  std::vector<double> bits(distributions.size()), idle_bits(distributions.size());
+  auto measure = [&](size_t d, int) {
+    const int l = distributions[d].level, c = distributions[d].channel;
     const int channels = config_.channels[l];
     const size_t active = noisy.grid[l].size() / channels;
     const double idle = static_cast<double>(config_.level_values(l) / channels) - active;
-    for (int c = 0; c < channels; ++c, ++d) {
-      bits += entropy_.Bits(d, noisy.grid[l].data() + c, active, channels, scale,
-                            grad ? grad->grid[l].data() + c : nullptr,
-                            entropy_grad ? entropy_grad->data() : nullptr);
-      const float zero = 0.0f;
-      bits += idle * entropy_.Bits(d, &zero, 1, 1, static_cast<float>(idle) * scale, nullptr,
-                                   entropy_grad ? entropy_grad->data() : nullptr);
-    }
+    const int id = static_cast<int>(d);
+    bits[d] = entropy_.Bits(id, noisy.grid[l].data() + c, active, channels, scale,
+                            grad ? grad->grid[l].data() + c : nullptr, d_params);
+    const float zero = 0.0f;
+    idle_bits[d] =
+        idle * entropy_.Bits(id, &zero, 1, 1, static_cast<float>(idle) * scale, nullptr, d_params);
+  };
+  if (pool) {
+    pool->Run(distributions.size(), measure);
+  } else {
+    for (size_t d = 0; d < distributions.size(); ++d) measure(d, 0);
   }
-  return bits;
+  double total = 0;
+  for (size_t d = 0; d < distributions.size(); ++d) total = total + bits[d] + idle_bits[d];
+  return total;
 }
 
 Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& static_set,
@@ -240,7 +253,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
     field.Backward(sum_p.data(), sum_q.data(), &grad);
     if (options.rate_term) {
       std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
-      RateAndGradient(noisy, options.rate_weight / kBitsPerRateUnit, &grad, &entropy_grad);
+      RateAndGradient(noisy, options.rate_weight / kBitsPerRateUnit, &grad, &entropy_grad,
+                      context.pool.get());
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);
@@ -259,7 +273,7 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   result->color_loss = color_count ? color_sum / color_count : 0.0;
 
   RoundGrid(&params);
-  result->rate_bits = RateAndGradient(params, 0.0, nullptr, nullptr);
+  result->rate_bits = RateAndGradient(params, 0.0, nullptr, nullptr, nullptr);
   field.Forward(config_, steps_, stencil, params, dynamic_set.positions.data(),
                 dynamic_set.rotations.data(), moved_p.data(), moved_q.data());
   result->motion.assign(7 * n, 0.0f);

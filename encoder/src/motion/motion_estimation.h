@@ -97,9 +97,11 @@ class MotionEstimator {
   const float* steps() const { return steps_; }
 
  private:
-  // Bits of the grid under the entropy model; adds the gradients of weight * bits.
+  // Bits of the grid under the entropy model; adds the gradients of weight * bits. Each
+  // (level, channel) has its own distribution and gradient entries, so they are spread over
+  // `pool` (null: the calling thread) and their bits summed in order: the same result.
   double RateAndGradient(const MotionParameters& noisy, double weight, MotionParameters* grad,
-                         std::vector<float>* entropy_grad) const;
+                         std::vector<float>* entropy_grad, ThreadPool* pool) const;
 
   GridConfig config_;
   MlpConfig mlp_config_;
