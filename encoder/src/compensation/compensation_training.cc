@@ -51,11 +51,13 @@ GaussianSet KeepOnly(const GaussianSet& set, const std::vector<uint8_t>& removed
 
 float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
 
-// Total blend weight of every Gaussian of the layers over all views (layer 0 the static one).
+// Total blend weight over all views of every Gaussian of the layers after layer 0, the static
+// one. Their splats lie within the focus on them, so only its tiles are rendered.
 Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
                     RenderSettings settings, FrozenLayerProjections* static_projections,
                     RenderContext* context, std::vector<float>* total) {
   settings.blend_weights = true;
+  settings.focus_layer = 1;
   for (int v = 0; v < views.size(); ++v) {
     const ProjectedSplats* static_projection = nullptr;
     M4D_RETURN_IF_ERROR(static_projections->For(v, views.cameras[v], &static_projection));
