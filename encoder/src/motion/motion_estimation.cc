@@ -4,10 +4,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "metrics/focused_loss.h"
 #include "motion/appearance_estimation.h"
+#include "motion/view_batch_gradients.h"
 #include "render/frozen_layer_projections.h"
-#include "render/splat_renderer.h"
 #include "train/adam_optimizer.h"
 #include "train/training_random.h"
 
@@ -164,19 +163,10 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
   std::copy(options.background, options.background + 3, settings.background);
-  settings.focus_layer = 1;  // the static layer alone is the same in every step
-  RenderContext context;
   FrozenLayerProjections static_projections(LayerView(static_set), options.sh_degree, views.size());
-  BackwardWorkspace workspace;
-  FocusedLoss loss(options.ssim_weight);
-  Image rendered, loss_grad;
-  std::vector<float> moved_p(3 * n), moved_q(4 * n), d_p(3 * n), d_q(4 * n);
-  std::vector<float> d_scales(3 * n), d_logits(n), d_sh(dynamic_set.sh.size());
-  LayerGradients layer_grads[2];  // the static layer stays frozen
-  layer_grads[1] = {d_p.data(), d_scales.data(), d_q.data(), d_logits.data(), d_sh.data()};
-  SplatGradients outputs;
-  outputs.layers = layer_grads;
-  outputs.layer_count = 2;
+  ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, &static_projections);
+  ViewBatchResult gradients;
+  std::vector<float> moved_p(3 * n), moved_q(4 * n);
 
   TrainingRandom rng(options.seed);
   std::vector<int> order;
@@ -184,15 +174,14 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   MotionField field;
   double color_sum = 0;
   int color_count = 0;
-  std::vector<float> sum_p(3 * n), sum_q(4 * n), sum_dc(3 * n);
   std::unique_ptr<AppearanceEstimation> appearance;
   if (options.appearance_step > 0) {
     appearance = std::make_unique<AppearanceEstimation>(n, options.appearance_step,
                                                         options.appearance_learning_rate,
                                                         options.entropy_learning_rate);
   }
-  const size_t sh_stride = static_cast<size_t>(dynamic_set.sh_floats());
   const int batch = std::clamp(options.views_per_step, 1, views.size());
+  std::vector<int> batch_views;
   for (int it = 0; it < options.iterations; ++it) {
     // The grid's rate decays tenfold over the frame: fast to the motion, then settled.
     const float decay = std::pow(0.1f, static_cast<float>(it) / std::max(1, options.iterations));
@@ -211,10 +200,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
                           : nullptr;
     const GaussianLayerView layers[2] = {LayerView(static_set),
                                          MovedView(dynamic_set, moved_p, moved_q, sh)};
-    // L_color is the mean over the step's views: their gradients are averaged.
-    std::fill(sum_p.begin(), sum_p.end(), 0.0f);
-    std::fill(sum_q.begin(), sum_q.end(), 0.0f);
-    std::fill(sum_dc.begin(), sum_dc.end(), 0.0f);
+    batch_views.clear();
+    int pass_start = 0;  // the batch's first view of the current pass through the views
     for (int b = 0; b < batch; ++b) {
       if (cursor == order.size()) {
         order.resize(views.size());
@@ -223,44 +210,26 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
         cursor = 0;
         color_sum = 0;
         color_count = 0;
+        pass_start = b;
       }
-      const int view = order[cursor++];
-      const Camera& camera = views.cameras[view];
-      const ProjectedSplats* static_projection = nullptr;
-      M4D_RETURN_IF_ERROR(static_projections.For(view, camera, &static_projection));
-      M4D_RETURN_IF_ERROR(
-          RenderForward(camera, layers, 2, settings, nullptr, static_projection, &context));
-      rendered.width = camera.width;
-      rendered.height = camera.height;
-      rendered.channels = 3;
-      rendered.pixels = context.color;
-      PhotometricLossValue value;
-      M4D_RETURN_IF_ERROR(
-          loss.Evaluate(rendered, views.images[view], context.focus, &value, &loss_grad));
-      color_sum += value.loss;
-      ++color_count;
-      M4D_RETURN_IF_ERROR(
-          RenderBackward(loss_grad.pixels.data(), nullptr, &context, outputs, &workspace));
-      const float w = 1.0f / static_cast<float>(batch);
-      for (size_t k = 0; k < sum_p.size(); ++k) sum_p[k] += w * d_p[k];
-      for (size_t k = 0; k < sum_q.size(); ++k) sum_q[k] += w * d_q[k];
-      if (appearance) {
-        for (size_t k = 0; k < sum_dc.size(); ++k)
-          sum_dc[k] += w * d_sh[(k / 3) * sh_stride + k % 3];
-      }
+      batch_views.push_back(order[cursor++]);
     }
+    M4D_RETURN_IF_ERROR(
+        batch_gradients.Compute(layers, batch_views, appearance != nullptr, &gradients));
+    for (int b = pass_start; b < batch; ++b) color_sum += gradients.losses[b];
+    color_count += batch - pass_start;
     ZeroParameters(&grad);
-    field.Backward(sum_p.data(), sum_q.data(), &grad);
+    field.Backward(gradients.positions.data(), gradients.rotations.data(), &grad);
     if (options.rate_term) {
       std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
       RateAndGradient(noisy, options.rate_weight / kBitsPerRateUnit, &grad, &entropy_grad,
-                      context.pool.get());
+                      batch_gradients.pool());
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);
     if (appearance) {
       const double rate = options.rate_term ? options.rate_weight / kBitsPerRateUnit : 0.0;
-      appearance->Step(sum_dc.data(), rate, decay);
+      appearance->Step(gradients.dc.data(), rate, decay);
     }
     if (options.train_mlp) {
       for (size_t j = 0; j < params.mlp.layers.size(); ++j) {

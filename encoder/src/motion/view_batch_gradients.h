@@ -1,0 +1,62 @@
+// ViewBatchGradients: the gradients of motion estimation's L_color for one step, the mean over
+// the step's training views, with the static layer frozen. With more than one view per step
+// and more than one thread, the views are rendered at once, one per thread: a render of the
+// focus tiles alone has too few tiles to keep two cores busy, and the steps between renders
+// (binning, the loss) run on one. Each view's gradients are kept apart and summed in the
+// batch's order, so the result does not depend on the thread count.
+#ifndef M4D_ENCODER_MOTION_VIEW_BATCH_GRADIENTS_H_
+#define M4D_ENCODER_MOTION_VIEW_BATCH_GRADIENTS_H_
+
+#include <memory>
+#include <vector>
+
+#include "common/status.h"
+#include "common/thread_pool.h"
+#include "metrics/focused_loss.h"
+#include "render/frozen_layer_projections.h"
+#include "render/gaussian_layer_view.h"
+#include "render/render_context.h"
+#include "render/render_settings.h"
+#include "render/splat_backward.h"
+#include "train/training_views.h"
+
+namespace m4d {
+
+struct ViewBatchResult {
+  // Mean over the batch of dL_color/d(position), d(rotation) (3 and 4 per dynamic Gaussian)
+  // and d(SH DC) (3 per Gaussian, when asked for).
+  std::vector<float> positions, rotations, dc;
+  std::vector<double> losses;  // L_color of each view, in batch order
+};
+
+class ViewBatchGradients {
+ public:
+  // settings.threads is the threads to use in all (0: the hardware's); the static layer's
+  // projection per view comes from static_projections, which must outlive this object.
+  ViewBatchGradients(const TrainingViews& views, const RenderSettings& settings, double ssim_weight,
+                     FrozenLayerProjections* static_projections);
+  ~ViewBatchGradients();
+
+  // Renders layers (static, then the moved dynamic set) from each view of `batch` and sums
+  // their gradients into *result; with_dc also sums the SH DC gradients.
+  Status Compute(const GaussianLayerView layers[2], const std::vector<int>& batch, bool with_dc,
+                 ViewBatchResult* result);
+
+  // The threads this object runs on, for the step's other parallel work.
+  ThreadPool* pool() { return pool_.get(); }
+
+ private:
+  struct Slot;
+  Status RenderView(int view, const GaussianLayerView layers[2], int threads, Slot* slot);
+
+  const TrainingViews& views_;
+  RenderSettings settings_;
+  double ssim_weight_;
+  FrozenLayerProjections* static_projections_;
+  std::unique_ptr<ThreadPool> pool_;
+  std::vector<std::unique_ptr<Slot>> slots_;  // one per view of the batch
+};
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_MOTION_VIEW_BATCH_GRADIENTS_H_
