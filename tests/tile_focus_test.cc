@@ -51,18 +51,27 @@ Scene MakeScene() {
   return s;
 }
 
-// The dynamic layer's position gradients with the static layer frozen.
-std::vector<float> DynamicGradients(const Scene& s, bool focused, RenderContext* ctx,
+enum class Focus { kNone, kMargin, kStaticAround };
+
+// The dynamic layer's position gradients with the static layer frozen: from the whole image,
+// a focus grown by a tile, or a focus without margin whose loss reads the static layer's
+// render around it.
+std::vector<float> DynamicGradients(const Scene& s, Focus mode, RenderContext* ctx,
                                     Image* rendered) {
   RenderSettings settings;
+  const bool focused = mode != Focus::kNone;
   if (focused) settings.focus_layer = 1;
+  if (mode == Focus::kStaticAround) settings.focus_margin = 0;
   const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
   *rendered = Render(s.camera, layers, 2, settings, ctx);
   PhotometricLossValue value;
   Image grad;
   if (focused) {
+    RenderContext static_ctx;
+    const Image static_render = Render(s.camera, layers, 1, RenderSettings(), &static_ctx);
+    const Image* unfocused = mode == Focus::kStaticAround ? &static_render : nullptr;
     FocusedLoss loss;
-    EXPECT_TRUE(loss.Evaluate(*rendered, s.target, ctx->focus, &value, &grad).ok());
+    EXPECT_TRUE(loss.Evaluate(*rendered, s.target, ctx->focus, unfocused, &value, &grad).ok());
   } else {
     PhotometricLoss loss;
     EXPECT_TRUE(loss.Evaluate(*rendered, s.target, &value, &grad).ok());
@@ -79,12 +88,14 @@ std::vector<float> DynamicGradients(const Scene& s, bool focused, RenderContext*
   return p;
 }
 
-TEST(TileFocusTest, FocusedRenderGivesTheDynamicLayerTheWholeImagesGradients) {
+class TileFocusTest : public ::testing::TestWithParam<Focus> {};
+
+TEST_P(TileFocusTest, FocusedRenderGivesTheDynamicLayerTheWholeImagesGradients) {
   const Scene s = MakeScene();
   RenderContext full_ctx, focus_ctx;
   Image full, focused;
-  const std::vector<float> whole = DynamicGradients(s, false, &full_ctx, &full);
-  const std::vector<float> part = DynamicGradients(s, true, &focus_ctx, &focused);
+  const std::vector<float> whole = DynamicGradients(s, Focus::kNone, &full_ctx, &full);
+  const std::vector<float> part = DynamicGradients(s, GetParam(), &focus_ctx, &focused);
   float largest = 0, worst = 0;
   for (float g : whole) largest = std::max(largest, std::fabs(g));
   ASSERT_GT(largest, 0.0f);
@@ -110,12 +121,15 @@ TEST(TileFocusTest, FocusedRenderGivesTheDynamicLayerTheWholeImagesGradients) {
   }
 }
 
-TEST(TileFocusTest, NothingInFocusRendersNothing) {
+INSTANTIATE_TEST_SUITE_P(MarginOrStaticAround, TileFocusTest,
+                         ::testing::Values(Focus::kMargin, Focus::kStaticAround));
+
+TEST_P(TileFocusTest, NothingInFocusRendersNothing) {
   Scene s = MakeScene();
   s.dynamic_set.Resize(0);
   RenderContext ctx;
   Image rendered;
-  DynamicGradients(s, true, &ctx, &rendered);
+  DynamicGradients(s, GetParam(), &ctx, &rendered);
   EXPECT_TRUE(ctx.focus.rect.empty());
   EXPECT_EQ(*std::max_element(rendered.pixels.begin(), rendered.pixels.end()), 0.0f);
 }

@@ -53,8 +53,8 @@ ViewBatchResult Gradients(const Scene& s, int threads, const std::vector<int>& b
   RenderSettings settings;
   settings.threads = threads;
   settings.sh_degree = 1;
-  FrozenLayerProjections projections(LayerView(s.static_set), settings.sh_degree, s.views.size());
-  ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &projections);
+  FrozenLayerViews frozen(LayerView(s.static_set), settings, s.views.size());
+  ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &frozen);
   const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
   ViewBatchResult result;
   EXPECT_TRUE(gradients.Compute(layers, batch, true, &result).ok());
@@ -95,8 +95,8 @@ TEST(ViewBatchGradientsTest, BatchIsTheMeanOfItsViews) {
 TEST(ViewBatchGradientsTest, ViewOutOfRangeIsAnError) {
   const Scene s = MakeScene();
   RenderSettings settings;
-  FrozenLayerProjections projections(LayerView(s.static_set), 1, s.views.size());
-  ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &projections);
+  FrozenLayerViews frozen(LayerView(s.static_set), settings, s.views.size());
+  ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &frozen);
   const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
   ViewBatchResult result;
   EXPECT_EQ(gradients.Compute(layers, {0, 3}, false, &result).code(), M4D_ERR_INVALID_ARG);

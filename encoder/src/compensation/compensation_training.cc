@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "metrics/focused_loss.h"
-#include "render/frozen_layer_projections.h"
+#include "render/frozen_layer_views.h"
 #include "render/splat_backward.h"
 #include "render/splat_renderer.h"
 #include "render/viewspace_gradient.h"
@@ -54,13 +54,14 @@ float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
 // Total blend weight over all views of every Gaussian of the layers after layer 0, the static
 // one. Their splats lie within the focus on them, so only its tiles are rendered.
 Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
-                    RenderSettings settings, FrozenLayerProjections* static_projections,
-                    RenderContext* context, std::vector<float>* total) {
+                    RenderSettings settings, FrozenLayerViews* static_views, RenderContext* context,
+                    std::vector<float>* total) {
   settings.blend_weights = true;
   settings.focus_layer = 1;
+  settings.focus_margin = 0;
   for (int v = 0; v < views.size(); ++v) {
     const ProjectedSplats* static_projection = nullptr;
-    M4D_RETURN_IF_ERROR(static_projections->For(v, views.cameras[v], &static_projection));
+    M4D_RETURN_IF_ERROR(static_views->Projection(v, views.cameras[v], &static_projection));
     M4D_RETURN_IF_ERROR(RenderForward(views.cameras[v], layers, count, settings, nullptr,
                                       static_projection, context));
     if (v == 0) total->assign(context->blend_weight.size(), 0.0f);
@@ -118,15 +119,14 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   }
   const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
   RenderContext context;
-  FrozenLayerProjections static_projections(LayerView(static_set), options.sh_degree, views.size());
+  FrozenLayerViews static_views(LayerView(static_set), settings, views.size());
 
   // Moved Gaussians that no training view sees are removed with the split parents.
   result->removed = candidates.removed;
   {
     const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(
-        BlendWeights(views, layers, 2, settings, &static_projections, &context, &weight));
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, &static_views, &context, &weight));
     result->removed_unseen = 0;
     for (size_t i = 0; i < moved.size(); ++i) {
       if (!result->removed[i] && weight[static_set.size() + i] < options.min_blend_weight) {
@@ -156,7 +156,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   int color_count = 0;
   const size_t initial = model.size();
   RenderSettings focused = settings;
-  focused.focus_layer = 1;  // the static layer alone is the same in every step
+  focused.focus_layer = 1;   // the static layer alone is the same in every step
+  focused.focus_margin = 0;  // the loss reads the tiles around from the static render
   auto prune = [&]() {
     std::vector<uint8_t> keep(model.size());
     for (size_t i = 0; i < model.size(); ++i) {
@@ -178,12 +179,15 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     const Camera& camera = views.cameras[view];
     const ProjectedSplats* static_projection = nullptr;
-    M4D_RETURN_IF_ERROR(static_projections.For(view, camera, &static_projection));
+    M4D_RETURN_IF_ERROR(static_views.Projection(view, camera, &static_projection));
     M4D_RETURN_IF_ERROR(
         RenderForward(camera, layers, 3, focused, nullptr, static_projection, &context));
     CopyRender(camera, context, &rendered);
     PhotometricLossValue value;
-    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[view], context.focus, &value, &grad));
+    const Image* static_render = nullptr;
+    M4D_RETURN_IF_ERROR(static_views.Render(view, camera, &static_render));
+    M4D_RETURN_IF_ERROR(
+        loss.Evaluate(rendered, views.images[view], context.focus, static_render, &value, &grad));
     color_sum += value.loss;
     ++color_count;
     layer_grads[2] = GradientView(&gradients);
@@ -199,8 +203,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   if (model.size() > 0) {
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(
-        BlendWeights(views, layers, 3, settings, &static_projections, &context, &weight));
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, &static_views, &context, &weight));
     std::vector<uint8_t> keep(model.size());
     const size_t offset = static_set.size() + kept.size();
     for (size_t i = 0; i < model.size(); ++i) {

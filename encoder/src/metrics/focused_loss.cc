@@ -35,17 +35,17 @@ void Crop(const Image& from, const PixelRect& r, Image* to) {
   }
 }
 
-// The crop's pixels of tiles the render skipped: the target's.
-void FillSkippedTiles(const TileFocus& focus, const PixelRect& r, const Image& target,
-                      Image* crop) {
+// The crop's pixels (tiles `tiles`) of tiles the render skipped: fill's.
+void FillSkippedTiles(const TileFocus& focus, const TileRect& tiles, const PixelRect& r,
+                      const Image& fill, Image* crop) {
   if (focus.all) return;
-  for (int ty = focus.rect.y0; ty <= focus.rect.y1; ++ty) {
-    for (int tx = focus.rect.x0; tx <= focus.rect.x1; ++tx) {
+  for (int ty = tiles.y0; ty <= tiles.y1; ++ty) {
+    for (int tx = tiles.x0; tx <= tiles.x1; ++tx) {
       if (focus.rendered(static_cast<size_t>(ty) * focus.tiles_x + tx)) continue;
-      const PixelRect tile = TilePixels(TileRect{tx, ty, tx, ty}, target.width, target.height);
+      const PixelRect tile = TilePixels(TileRect{tx, ty, tx, ty}, fill.width, fill.height);
       for (int y = tile.y0; y < tile.y1; ++y) {
         std::memcpy(crop->row(y - r.y0) + static_cast<size_t>(tile.x0 - r.x0) * 3,
-                    target.row(y) + static_cast<size_t>(tile.x0) * 3,
+                    fill.row(y) + static_cast<size_t>(tile.x0) * 3,
                     static_cast<size_t>(tile.width()) * 3 * sizeof(float));
       }
     }
@@ -55,9 +55,11 @@ void FillSkippedTiles(const TileFocus& focus, const PixelRect& r, const Image& t
 }  // namespace
 
 Status FocusedLoss::Evaluate(const Image& rendered, const Image& target, const TileFocus& focus,
-                             PhotometricLossValue* value, Image* grad) {
+                             const Image* unfocused, PhotometricLossValue* value, Image* grad) {
   if (rendered.width != target.width || rendered.height != target.height ||
-      rendered.channels != 3 || target.channels != 3) {
+      rendered.channels != 3 || target.channels != 3 ||
+      (unfocused && (unfocused->width != target.width || unfocused->height != target.height ||
+                     unfocused->channels != 3))) {
     return Status(M4D_ERR_INVALID_ARG, "focused loss: images differ in shape");
   }
   grad->width = rendered.width;
@@ -65,12 +67,19 @@ Status FocusedLoss::Evaluate(const Image& rendered, const Image& target, const T
   grad->channels = 3;
   grad->pixels.assign(rendered.pixels.size(), 0.0f);
   *value = PhotometricLossValue();
-  const PixelRect r =
-      focus.rect.empty() ? PixelRect() : TilePixels(focus.rect, rendered.width, rendered.height);
+  if (focus.rect.empty()) return Status::Ok();
+  TileRect tiles = focus.rect;
+  if (unfocused && !focus.all) {
+    tiles.x0 = std::max(0, tiles.x0 - 1);
+    tiles.y0 = std::max(0, tiles.y0 - 1);
+    tiles.x1 = std::min(focus.tiles_x - 1, tiles.x1 + 1);
+    tiles.y1 = std::min(focus.tiles_y - 1, tiles.y1 + 1);
+  }
+  const PixelRect r = TilePixels(tiles, rendered.width, rendered.height);
   if (r.width() <= 0 || r.height() <= 0) return Status::Ok();
   Crop(rendered, r, &rendered_crop_);
   Crop(target, r, &target_crop_);
-  FillSkippedTiles(focus, r, target, &rendered_crop_);
+  FillSkippedTiles(focus, tiles, r, unfocused ? *unfocused : target, &rendered_crop_);
   M4D_RETURN_IF_ERROR(loss_.Evaluate(rendered_crop_, target_crop_, value, &grad_crop_));
   // The crop's loss is a mean over its pixels; the whole image's weighs each pixel less.
   const float share = static_cast<float>(static_cast<double>(rendered_crop_.pixels.size()) /

@@ -1,11 +1,15 @@
-// The photometric loss of a render restricted to its focus tiles (render/tile_focus.h): the
-// loss over the focus's bounding rectangle, each pixel weighted as in the loss of the whole
-// image (photometric_loss.h), the tiles there that were not rendered taken as the target
-// (no loss), and the gradient zero outside the rectangle.
-//
-// Where the focus is grown by a tile around the trained splats, their pixels' gradient is the
-// whole image's: the SSIM term at a pixel reads the image within 10 pixels (two 11x11
-// windows), less than the 16-pixel margin. The loss value is the rectangle's own mean.
+// The photometric loss of a render restricted to its focus tiles (render/tile_focus.h), each
+// pixel weighted as in the loss of the whole image (photometric_loss.h), the gradient zero
+// outside the pixels it is taken over. The trained splats' pixels get the whole image's
+// gradient when the SSIM term's reach around them, 10 pixels (two 11x11 windows), holds what
+// the whole render holds there. Either
+// - the focus was grown by a tile around the trained splats: the loss is taken over its
+//   bounding rectangle, the tiles there that were not rendered taken as the target (no loss);
+// - or the caller gives `unfocused`, what the render holds outside the focus (the frozen
+//   layers' render alone, render/frozen_layer_views.h): the loss is taken over the rectangle
+//   grown by a tile, the tiles not rendered read from `unfocused`. The focus then needs no
+//   margin, and a quarter to a half fewer tiles are rendered.
+// The loss value is the mean over those pixels.
 #ifndef M4D_ENCODER_METRICS_FOCUSED_LOSS_H_
 #define M4D_ENCODER_METRICS_FOCUSED_LOSS_H_
 
@@ -20,10 +24,11 @@ class FocusedLoss {
  public:
   explicit FocusedLoss(double ssim_weight = kDefaultSsimWeight) : loss_(ssim_weight) {}
 
-  // The loss of `rendered` against `target` (same shape, 3 channels) over the pixels of the
-  // focus tiles; *grad is dL/drendered in rendered's shape (zero outside the focus).
+  // The loss of `rendered` against `target` (same shape, 3 channels) around the focus
+  // tiles; *grad is dL/drendered in rendered's shape. `unfocused` (null: see above) has their
+  // shape too.
   Status Evaluate(const Image& rendered, const Image& target, const TileFocus& focus,
-                  PhotometricLossValue* value, Image* grad);
+                  const Image* unfocused, PhotometricLossValue* value, Image* grad);
 
  private:
   PhotometricLoss loss_;

@@ -6,7 +6,7 @@
 
 #include "motion/appearance_estimation.h"
 #include "motion/view_batch_gradients.h"
-#include "render/frozen_layer_projections.h"
+#include "render/frozen_layer_views.h"
 #include "train/adam_optimizer.h"
 #include "train/training_random.h"
 
@@ -163,8 +163,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
   std::copy(options.background, options.background + 3, settings.background);
-  FrozenLayerProjections static_projections(LayerView(static_set), options.sh_degree, views.size());
-  ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, &static_projections);
+  FrozenLayerViews static_views(LayerView(static_set), settings, views.size());
+  ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, &static_views);
   ViewBatchResult gradients;
   std::vector<float> moved_p(3 * n), moved_q(4 * n);
 

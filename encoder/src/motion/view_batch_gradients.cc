@@ -13,6 +13,7 @@ struct ViewBatchGradients::Slot {
   Image rendered, loss_grad;
   std::vector<float> d_p, d_q, d_scales, d_logits, d_sh;
   const ProjectedSplats* static_projection = nullptr;
+  const Image* static_render = nullptr;
   double loss_value = 0;
   Status status;
 
@@ -20,14 +21,14 @@ struct ViewBatchGradients::Slot {
 };
 
 ViewBatchGradients::ViewBatchGradients(const TrainingViews& views, const RenderSettings& settings,
-                                       double ssim_weight,
-                                       FrozenLayerProjections* static_projections)
+                                       double ssim_weight, FrozenLayerViews* static_views)
     : views_(views),
       settings_(settings),
       ssim_weight_(ssim_weight),
-      static_projections_(static_projections),
+      static_views_(static_views),
       pool_(std::make_unique<ThreadPool>(settings.threads)) {
   settings_.focus_layer = 1;  // the static layer alone is the same in every step
+  settings_.focus_margin = 0;
 }
 
 ViewBatchGradients::~ViewBatchGradients() = default;
@@ -45,7 +46,7 @@ Status ViewBatchGradients::RenderView(int view, const GaussianLayerView layers[2
   slot->rendered.pixels = slot->context.color;
   PhotometricLossValue value;
   M4D_RETURN_IF_ERROR(slot->loss.Evaluate(slot->rendered, views_.images[view], slot->context.focus,
-                                          &value, &slot->loss_grad));
+                                          slot->static_render, &value, &slot->loss_grad));
   slot->loss_value = value.loss;
   const size_t n = layers[1].count;
   slot->d_p.resize(3 * n);
@@ -69,7 +70,9 @@ Status ViewBatchGradients::Compute(const GaussianLayerView layers[2], const std:
   for (size_t b = 0; b < batch.size(); ++b) {
     const int view = batch[b];
     M4D_RETURN_IF_ERROR(
-        static_projections_->For(view, views_.cameras[view], &slots_[b]->static_projection));
+        static_views_->Projection(view, views_.cameras[view], &slots_[b]->static_projection));
+    M4D_RETURN_IF_ERROR(
+        static_views_->Render(view, views_.cameras[view], &slots_[b]->static_render));
   }
   // One thread per view, or all of them on a single view's tiles.
   const int threads = batch.size() > 1 && pool_->size() > 1 ? 1 : settings_.threads;

@@ -13,7 +13,7 @@
 #include "common/status.h"
 #include "common/thread_pool.h"
 #include "metrics/focused_loss.h"
-#include "render/frozen_layer_projections.h"
+#include "render/frozen_layer_views.h"
 #include "render/gaussian_layer_view.h"
 #include "render/render_context.h"
 #include "render/render_settings.h"
@@ -32,9 +32,11 @@ struct ViewBatchResult {
 class ViewBatchGradients {
  public:
   // settings.threads is the threads to use in all (0: the hardware's); the static layer's
-  // projection per view comes from static_projections, which must outlive this object.
+  // projection and render per view come from static_views, which must outlive this object.
+  // Only the tiles the dynamic splats reach are rendered, without a margin: the loss reads
+  // the tiles around them from the static layer's render (metrics/focused_loss.h).
   ViewBatchGradients(const TrainingViews& views, const RenderSettings& settings, double ssim_weight,
-                     FrozenLayerProjections* static_projections);
+                     FrozenLayerViews* static_views);
   ~ViewBatchGradients();
 
   // Renders layers (static, then the moved dynamic set) from each view of `batch` and sums
@@ -52,7 +54,7 @@ class ViewBatchGradients {
   const TrainingViews& views_;
   RenderSettings settings_;
   double ssim_weight_;
-  FrozenLayerProjections* static_projections_;
+  FrozenLayerViews* static_views_;
   std::unique_ptr<ThreadPool> pool_;
   std::vector<std::unique_ptr<Slot>> slots_;  // one per view of the batch
 };

@@ -41,11 +41,11 @@ TrainingPsnrMeter::TrainingPsnrMeter(const GaussianSet& static_set, const Render
     : static_set_(static_set), settings_(settings) {}
 
 Status TrainingPsnrMeter::StaticProjection(int view, const ProjectedSplats** projection) {
-  if (!static_projections_) {
-    static_projections_ = std::make_unique<FrozenLayerProjections>(
-        LayerView(static_set_), settings_.sh_degree, views_->size());
+  if (!static_views_) {
+    static_views_ =
+        std::make_unique<FrozenLayerViews>(LayerView(static_set_), settings_, views_->size());
   }
-  return static_projections_->For(view, views_->cameras[view], projection);
+  return static_views_->Projection(view, views_->cameras[view], projection);
 }
 
 Status TrainingPsnrMeter::RenderStatic() {
@@ -86,6 +86,7 @@ Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) 
   }
   RenderSettings focused = settings_;
   focused.focus_layer = 1;
+  focused.focus_margin = 0;  // the tiles around hold the static render, as measured
   const GaussianLayerView layers[2] = {LayerView(static_set_), LayerView(dynamic_set)};
   double sum = 0;
   std::vector<double> errors;

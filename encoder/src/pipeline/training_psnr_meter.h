@@ -15,7 +15,7 @@
 
 #include "common/status.h"
 #include "layers/gaussian_set.h"
-#include "render/frozen_layer_projections.h"
+#include "render/frozen_layer_views.h"
 #include "render/render_context.h"
 #include "render/render_settings.h"
 #include "train/training_views.h"
@@ -42,9 +42,9 @@ class TrainingPsnrMeter {
   RenderSettings settings_;
   const TrainingViews* views_ = nullptr;
   RenderContext context_;
-  std::unique_ptr<FrozenLayerProjections> static_projections_;  // made with the first views
-  std::vector<std::vector<float>> static_color_;                // per view, clamped
-  std::vector<std::vector<double>> static_error_;               // per view and tile: squared error
+  std::unique_ptr<FrozenLayerViews> static_views_;  // made with the first views
+  std::vector<std::vector<float>> static_color_;    // per view, clamped
+  std::vector<std::vector<double>> static_error_;   // per view and tile: squared error
   struct Measured {
     GaussianSet set;
     double psnr;

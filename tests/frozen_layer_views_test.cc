@@ -1,6 +1,7 @@
-// A render given its first layer's projection (FrozenLayerProjections, RenderForward with
-// first_layer) is the render that projects every layer, bit for bit, gradients included.
-#include "render/frozen_layer_projections.h"
+// A render given its first layer's projection (FrozenLayerViews, RenderForward with
+// first_layer) is the render that projects every layer, bit for bit, gradients included; the
+// frozen layer's render alone is its plain render.
+#include "render/frozen_layer_views.h"
 
 #include <gtest/gtest.h>
 
@@ -39,9 +40,9 @@ Result RenderBoth(const Camera& camera, const GaussianLayerView* layers,
   return {ctx.color, ctx.alpha, p};
 }
 
-class FrozenLayerProjectionsTest : public ::testing::TestWithParam<int> {};
+class FrozenLayerViewsTest : public ::testing::TestWithParam<int> {};
 
-TEST_P(FrozenLayerProjectionsTest, GivenProjectionRendersTheSameBitForBit) {
+TEST_P(FrozenLayerViewsTest, GivenProjectionRendersTheSameBitForBit) {
   test::SceneOptions background;
   background.count = 800;
   background.sh_degree = 2;
@@ -55,10 +56,10 @@ TEST_P(FrozenLayerProjectionsTest, GivenProjectionRendersTheSameBitForBit) {
   RenderSettings settings;
   settings.sh_degree = 1;
   settings.focus_layer = GetParam();
-  FrozenLayerProjections projections(layers[0], settings.sh_degree, 2);
+  FrozenLayerViews frozen(layers[0], settings, 2);
   for (int v : {1, 0, 1}) {
     const ProjectedSplats* given = nullptr;
-    ASSERT_TRUE(projections.For(v, cameras[v], &given).ok());
+    ASSERT_TRUE(frozen.Projection(v, cameras[v], &given).ok());
     ASSERT_EQ(given->size(), static_set.size());
     const Result expected = RenderBoth(cameras[v], layers, settings, nullptr);
     const Result got = RenderBoth(cameras[v], layers, settings, given);
@@ -66,22 +67,33 @@ TEST_P(FrozenLayerProjectionsTest, GivenProjectionRendersTheSameBitForBit) {
     EXPECT_EQ(got.alpha, expected.alpha);
     EXPECT_EQ(got.positions_grad, expected.positions_grad);
     EXPECT_GT(*std::max_element(got.alpha.begin(), got.alpha.end()), 0.5f);
+
+    const Image* alone = nullptr;
+    ASSERT_TRUE(frozen.Render(v, cameras[v], &alone).ok());
+    RenderSettings plain = settings;
+    plain.focus_layer = -1;
+    RenderContext ctx;
+    ASSERT_TRUE(RenderForward(cameras[v], layers, 1, plain, nullptr, &ctx).ok());
+    EXPECT_EQ(alone->pixels, ctx.color);
+    EXPECT_EQ(alone->width, cameras[v].width);
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(WholeImageAndFocus, FrozenLayerProjectionsTest, ::testing::Values(-1, 1));
+INSTANTIATE_TEST_SUITE_P(WholeImageAndFocus, FrozenLayerViewsTest, ::testing::Values(-1, 1));
 
-TEST(FrozenLayerProjectionsTest, MismatchesAreRejected) {
+TEST(FrozenLayerViewsTest, MismatchesAreRejected) {
   test::SceneOptions options;
   const GaussianSet a = test::RandomGaussians(options, 1);
   options.count = 7;
   const GaussianSet b = test::RandomGaussians(options, 2);
   const Camera camera = test::TestCamera(64, 48);
-  FrozenLayerProjections projections(LayerView(a), 3, 1);
+  FrozenLayerViews frozen(LayerView(a), RenderSettings(), 1);
   const ProjectedSplats* given = nullptr;
-  EXPECT_EQ(projections.For(1, camera, &given).code(), M4D_ERR_INVALID_ARG);
-  EXPECT_EQ(projections.For(-1, camera, &given).code(), M4D_ERR_INVALID_ARG);
-  ASSERT_TRUE(projections.For(0, camera, &given).ok());
+  const Image* render = nullptr;
+  EXPECT_EQ(frozen.Projection(1, camera, &given).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(frozen.Projection(-1, camera, &given).code(), M4D_ERR_INVALID_ARG);
+  EXPECT_EQ(frozen.Render(1, camera, &render).code(), M4D_ERR_INVALID_ARG);
+  ASSERT_TRUE(frozen.Projection(0, camera, &given).ok());
   // A projection of another layer's size.
   const GaussianLayerView layers[2] = {LayerView(b), LayerView(a)};
   RenderContext ctx;
