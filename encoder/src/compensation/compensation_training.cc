@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "metrics/focused_loss.h"
 #include "render/frozen_layer_views.h"
@@ -74,7 +75,8 @@ Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers,
 
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
                                  const GaussianSet& moved, int sh_degree, const float* background,
-                                 int threads, std::vector<float>* mean_gradient) {
+                                 int threads, std::vector<float>* mean_gradient,
+                                 FrozenLayerViews* static_views) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   const RenderSettings settings = Settings(sh_degree, background, threads);
   const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
@@ -92,7 +94,10 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
   Image rendered, grad;
   for (int v = 0; v < views.size(); ++v) {
     const Camera& camera = views.cameras[v];
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, settings, nullptr, &context));
+    const ProjectedSplats* static_projection = nullptr;
+    if (static_views) M4D_RETURN_IF_ERROR(static_views->Projection(v, camera, &static_projection));
+    M4D_RETURN_IF_ERROR(
+        RenderForward(camera, layers, 2, settings, nullptr, static_projection, &context));
     CopyRender(camera, context, &rendered);
     PhotometricLossValue value;
     M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[v], &value, &grad));
@@ -112,21 +117,26 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
 
 Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_set,
                          const GaussianSet& moved, const CompensationCandidates& candidates,
-                         const CompensationOptions& options, CompensationResult* result) {
+                         const CompensationOptions& options, CompensationResult* result,
+                         FrozenLayerViews* static_views) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   if (candidates.removed.size() != moved.size()) {
     return Status(M4D_ERR_INVALID_ARG, "compensation: removal flags differ from the moved set");
   }
   const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
   RenderContext context;
-  FrozenLayerViews static_views(LayerView(static_set), settings, views.size());
+  std::unique_ptr<FrozenLayerViews> own_views;
+  if (!static_views) {
+    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    static_views = own_views.get();
+  }
 
   // Moved Gaussians that no training view sees are removed with the split parents.
   result->removed = candidates.removed;
   {
     const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, &static_views, &context, &weight));
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, static_views, &context, &weight));
     result->removed_unseen = 0;
     for (size_t i = 0; i < moved.size(); ++i) {
       if (!result->removed[i] && weight[static_set.size() + i] < options.min_blend_weight) {
@@ -179,13 +189,13 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     const Camera& camera = views.cameras[view];
     const ProjectedSplats* static_projection = nullptr;
-    M4D_RETURN_IF_ERROR(static_views.Projection(view, camera, &static_projection));
+    M4D_RETURN_IF_ERROR(static_views->Projection(view, camera, &static_projection));
     M4D_RETURN_IF_ERROR(
         RenderForward(camera, layers, 3, focused, nullptr, static_projection, &context));
     CopyRender(camera, context, &rendered);
     PhotometricLossValue value;
     const Image* static_render = nullptr;
-    M4D_RETURN_IF_ERROR(static_views.Render(view, camera, &static_render));
+    M4D_RETURN_IF_ERROR(static_views->Render(view, camera, &static_render));
     M4D_RETURN_IF_ERROR(
         loss.Evaluate(rendered, views.images[view], context.focus, static_render, &value, &grad));
     color_sum += value.loss;
@@ -203,7 +213,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   if (model.size() > 0) {
     const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, &static_views, &context, &weight));
+    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, static_views, &context, &weight));
     std::vector<uint8_t> keep(model.size());
     const size_t offset = static_set.size() + kept.size();
     for (size_t i = 0; i < model.size(); ++i) {

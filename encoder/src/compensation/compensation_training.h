@@ -22,6 +22,7 @@
 #include "common/status.h"
 #include "compensation/compensation_candidates.h"
 #include "layers/gaussian_set.h"
+#include "render/frozen_layer_views.h"
 #include "train/learning_rate_schedule.h"
 #include "train/training_views.h"
 
@@ -54,14 +55,18 @@ struct CompensationResult {
 
 // Mean over the training views of each moved Gaussian's view-space gradient norm (the
 // reference's NDC units), rendering static_set and moved together: the replication measure
-// of compensation_candidates.h.
+// of compensation_candidates.h. static_views as for TrainCompensation.
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
                                  const GaussianSet& moved, int sh_degree, const float* background,
-                                 int threads, std::vector<float>* mean_gradient);
+                                 int threads, std::vector<float>* mean_gradient,
+                                 FrozenLayerViews* static_views = nullptr);
 
+// static_views, when given, is static_set's for these views' cameras, kept for the GOP
+// (null: made for this call).
 Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_set,
                          const GaussianSet& moved, const CompensationCandidates& candidates,
-                         const CompensationOptions& options, CompensationResult* result);
+                         const CompensationOptions& options, CompensationResult* result,
+                         FrozenLayerViews* static_views = nullptr);
 
 }  // namespace m4d
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "motion/appearance_estimation.h"
 #include "motion/view_batch_gradients.h"
@@ -115,7 +116,7 @@ double MotionEstimator::RateAndGradient(const MotionParameters& noisy, double we
 Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& static_set,
                                  const GaussianSet& dynamic_set, const GridBox& box,
                                  const MotionEstimationOptions& options,
-                                 MotionEstimationResult* result) {
+                                 MotionEstimationResult* result, FrozenLayerViews* static_views) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   if (views.size() == 0 || options.iterations < 0) {
     return Status(M4D_ERR_INVALID_ARG, "motion estimation: no views or negative iterations");
@@ -163,8 +164,12 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
   std::copy(options.background, options.background + 3, settings.background);
-  FrozenLayerViews static_views(LayerView(static_set), settings, views.size());
-  ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, &static_views);
+  std::unique_ptr<FrozenLayerViews> own_views;
+  if (!static_views) {
+    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    static_views = own_views.get();
+  }
+  ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, static_views);
   ViewBatchResult gradients;
   std::vector<float> moved_p(3 * n), moved_q(4 * n);
 

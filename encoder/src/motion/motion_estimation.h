@@ -31,6 +31,7 @@
 #include "motion/logistic_entropy_model.h"
 #include "motion/motion_field.h"
 #include "motion/motion_stencil.h"
+#include "render/frozen_layer_views.h"
 #include "render/render_context.h"
 #include "render/splat_backward.h"
 #include "train/training_views.h"
@@ -86,10 +87,12 @@ class MotionEstimator {
   void StartGop(uint64_t seed);
 
   // Trains the motion of one frame: static_set and dynamic_set are frame t-1's decoded sets,
-  // views frame t's training views.
+  // views frame t's training views. static_views, when given, is static_set's for these
+  // views' cameras, kept for the GOP (null: made for this call).
   Status Estimate(const TrainingViews& views, const GaussianSet& static_set,
                   const GaussianSet& dynamic_set, const GridBox& box,
-                  const MotionEstimationOptions& options, MotionEstimationResult* result);
+                  const MotionEstimationOptions& options, MotionEstimationResult* result,
+                  FrozenLayerViews* static_views = nullptr);
 
   const MlpWeights& mlp() const { return mlp_; }
   const LogisticEntropyModel& entropy_model() const { return entropy_; }

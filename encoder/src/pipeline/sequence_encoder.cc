@@ -48,8 +48,11 @@ struct SequenceEncoder::Gop {
   bool mlp_trained = false;
   float scene_extent = 1.0f;
   FrameReport keyframe_report;  // its training_psnr is what the adaptive GOP compares with
-  std::unique_ptr<TrainingPsnrMeter> meter;  // of static_set, once it is decoded
-  double noise_gap = 0;                      // NoiseGap, measured at the first inter frame
+  // Of static_set, once it is decoded: its projection and render per training view, and the
+  // mode decisions' PSNR.
+  std::unique_ptr<FrozenLayerViews> static_views;
+  std::unique_ptr<TrainingPsnrMeter> meter;
+  double noise_gap = 0;  // NoiseGap, measured at the first inter frame
 };
 
 namespace {
@@ -375,7 +378,11 @@ Status SequenceEncoder::StartDependentGop(int frame, GaussianModel model, Gaussi
 
 Status SequenceEncoder::FinishGopStart(int frame, const TrainingViews& views) {
   Gop& gop = *gop_;
-  gop.meter = std::make_unique<TrainingPsnrMeter>(gop.static_set, Settings());
+  gop.meter.reset();
+  gop.static_views =
+      std::make_unique<FrozenLayerViews>(LayerView(gop.static_set), Settings(), views.size());
+  gop.meter =
+      std::make_unique<TrainingPsnrMeter>(gop.static_set, Settings(), gop.static_views.get());
   M4D_RETURN_IF_ERROR(gop.meter->StartFrame(views));
   M4D_RETURN_IF_ERROR(gop.meter->Measure(gop.dynamic_set, &gop.keyframe_report.training_psnr));
   gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
@@ -444,8 +451,8 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     o.threads = options_.threads;
     o.seed = options_.seed + 7919u * static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, o.background);
-    M4D_RETURN_IF_ERROR(
-        estimator_->Estimate(views, gop.static_set, gop.dynamic_set, gop.box, o, &motion));
+    M4D_RETURN_IF_ERROR(estimator_->Estimate(views, gop.static_set, gop.dynamic_set, gop.box, o,
+                                             &motion, gop.static_views.get()));
     if (!gop.mlp_trained) {
       gop.mlp = estimator_->mlp();
       M4D_RETURN_IF_ERROR(DecodedMlp(gop.mlp, options_, &gop.decoded_mlp));
@@ -485,8 +492,8 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     if (callbacks_.stage) callbacks_.stage("compensation", frame);
     std::vector<float> gradient;
     M4D_RETURN_IF_ERROR(MeasureViewspaceGradients(views, gop.static_set, moved, options_.sh_degree,
-                                                  options_.background, options_.threads,
-                                                  &gradient));
+                                                  options_.background, options_.threads, &gradient,
+                                                  gop.static_views.get()));
     std::vector<float> outputs = motion_on ? motion.motion : std::vector<float>(7 * moved.size());
     CompensationCandidates candidates =
         ProposeCompensation(moved, gradient, outputs, options_.compensation_thresholds,
@@ -497,8 +504,8 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     o.threads = options_.threads;
     o.seed = options_.seed + 104729u * static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, o.background);
-    M4D_RETURN_IF_ERROR(
-        TrainCompensation(views, gop.static_set, moved, candidates, o, &compensation));
+    M4D_RETURN_IF_ERROR(TrainCompensation(views, gop.static_set, moved, candidates, o,
+                                          &compensation, gop.static_views.get()));
   }
   M4D_RETURN_IF_ERROR(DecideCompensation(moved, &compensation, &report));
   report.seconds.compensation = Since(start);

@@ -37,40 +37,20 @@ double PsnrFromSquaredError(double error, size_t samples) {
 
 }  // namespace
 
-TrainingPsnrMeter::TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings)
-    : static_set_(static_set), settings_(settings) {}
-
-Status TrainingPsnrMeter::StaticProjection(int view, const ProjectedSplats** projection) {
-  if (!static_views_) {
-    static_views_ =
-        std::make_unique<FrozenLayerViews>(LayerView(static_set_), settings_, views_->size());
-  }
-  return static_views_->Projection(view, views_->cameras[view], projection);
-}
-
-Status TrainingPsnrMeter::RenderStatic() {
-  static_color_.resize(views_->size());
-  const GaussianLayerView layer = LayerView(static_set_);
-  for (int v = 0; v < views_->size(); ++v) {
-    const ProjectedSplats* projection = nullptr;
-    M4D_RETURN_IF_ERROR(StaticProjection(v, &projection));
-    M4D_RETURN_IF_ERROR(
-        RenderForward(views_->cameras[v], &layer, 1, settings_, nullptr, projection, &context_));
-    static_color_[v] = context_.color;
-  }
-  return Status::Ok();
-}
+TrainingPsnrMeter::TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings,
+                                     FrozenLayerViews* static_views)
+    : static_set_(static_set), settings_(settings), static_views_(static_views) {}
 
 Status TrainingPsnrMeter::StartFrame(const TrainingViews& views) {
   views_ = &views;
   measured_.clear();
-  if (static_color_.size() != static_cast<size_t>(views.size())) {
-    M4D_RETURN_IF_ERROR(RenderStatic());
-  }
   static_error_.resize(views.size());
   for (int v = 0; v < views.size(); ++v) {
     const Camera& camera = views.cameras[v];
-    TileErrors(static_color_[v].data(), views.images[v], (camera.width + kTileSize - 1) / kTileSize,
+    const Image* static_render = nullptr;
+    M4D_RETURN_IF_ERROR(static_views_->Render(v, camera, &static_render));
+    TileErrors(static_render->pixels.data(), views.images[v],
+               (camera.width + kTileSize - 1) / kTileSize,
                (camera.height + kTileSize - 1) / kTileSize, &static_error_[v]);
   }
   return Status::Ok();
@@ -93,7 +73,7 @@ Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) 
   for (int v = 0; v < views_->size(); ++v) {
     const Camera& camera = views_->cameras[v];
     const ProjectedSplats* projection = nullptr;
-    M4D_RETURN_IF_ERROR(StaticProjection(v, &projection));
+    M4D_RETURN_IF_ERROR(static_views_->Projection(v, views_->cameras[v], &projection));
     M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, projection, &context_));
     const TileFocus& focus = context_.focus;
     TileErrors(context_.color.data(), views_->images[v], focus.tiles_x, focus.tiles_y, &errors);

@@ -1,16 +1,15 @@
 // TrainingPsnrMeter: the mean PSNR over a frame's training views of the GOP's static set with
 // a dynamic set, the measure of the inter-frame mode decisions and of the adaptive GOP. The
 // static set and the cameras stay for the GOP, so each view's static-only render and the
-// static set's projection are made once; a measure then renders only the tiles the dynamic set
-// reaches (render/tile_focus.h) and takes every other tile's error from the static render,
-// which is what the whole render holds there.
+// static set's projection are made once (render/frozen_layer_views.h); a measure then renders
+// only the tiles the dynamic set reaches (render/tile_focus.h) and takes every other tile's
+// error from the static render, which is what the whole render holds there.
 // PSNR as view_evaluation.h measures it (renders clamped to [0, 1], mean over views), without
 // its SSIM. A frame's decisions measure the same set more than once: results are kept for the
 // frame.
 #ifndef M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 #define M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 
-#include <memory>
 #include <vector>
 
 #include "common/status.h"
@@ -24,8 +23,11 @@ namespace m4d {
 
 class TrainingPsnrMeter {
  public:
-  // static_set must outlive the meter and stay unchanged (the GOP's).
-  TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings);
+  // static_set must outlive the meter and stay unchanged (the GOP's); static_views is its
+  // FrozenLayerViews for the GOP's cameras, made with the same settings, and must outlive the
+  // meter too.
+  TrainingPsnrMeter(const GaussianSet& static_set, const RenderSettings& settings,
+                    FrozenLayerViews* static_views);
 
   // The training views of the frame being measured (kept by reference until the next call);
   // their cameras must be the GOP's.
@@ -35,16 +37,12 @@ class TrainingPsnrMeter {
   Status Measure(const GaussianSet& dynamic_set, double* psnr);
 
  private:
-  Status RenderStatic();
-  Status StaticProjection(int view, const ProjectedSplats** projection);
-
   const GaussianSet& static_set_;
   RenderSettings settings_;
   const TrainingViews* views_ = nullptr;
   RenderContext context_;
-  std::unique_ptr<FrozenLayerViews> static_views_;  // made with the first views
-  std::vector<std::vector<float>> static_color_;    // per view, clamped
-  std::vector<std::vector<double>> static_error_;   // per view and tile: squared error
+  FrozenLayerViews* static_views_;
+  std::vector<std::vector<double>> static_error_;  // per view and tile: squared error
   struct Measured {
     GaussianSet set;
     double psnr;
