@@ -122,7 +122,10 @@ TEST_P(TileFocusTest, FocusedRenderGivesTheDynamicLayerTheWholeImagesGradients) 
 }
 
 INSTANTIATE_TEST_SUITE_P(MarginOrStaticAround, TileFocusTest,
-                         ::testing::Values(Focus::kMargin, Focus::kStaticAround));
+                         ::testing::Values(Focus::kMargin, Focus::kStaticAround),
+                         [](const ::testing::TestParamInfo<Focus>& param) {
+                           return param.param == Focus::kMargin ? "Margin" : "StaticAround";
+                         });
 
 TEST_P(TileFocusTest, NothingInFocusRendersNothing) {
   Scene s = MakeScene();
