@@ -9,8 +9,11 @@
 
 #include "compensation/compensation_candidates.h"
 #include "compensation/compensation_training.h"
+#include "metrics/photometric_loss.h"
 #include "metrics/psnr.h"
+#include "render/splat_backward.h"
 #include "render/splat_renderer.h"
+#include "render/viewspace_gradient.h"
 #include "splat_test_scenes.h"
 #include "train/training_views.h"
 
@@ -145,6 +148,56 @@ TEST(CompensationTrainingTest, SparsityWeightRemovesGaussians) {
   };
   const size_t light = kept(0.0), heavy = kept(1e-2);
   EXPECT_LT(heavy, light / 2) << light << " vs " << heavy;
+}
+
+// The measure renders only the tiles the moved set reaches and reads the rest from the static
+// layer's render: each moved Gaussian gets what a pass over the whole image gives it.
+TEST(CompensationTrainingTest, ViewspaceGradientsAreTheWholeImagesMean) {
+  Scene s = MakeScene();
+  const float black[3] = {0, 0, 0};
+  std::vector<float> measured;
+  ASSERT_TRUE(
+      MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, black, 0, &measured).ok());
+  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.moved)};
+  const size_t offset = s.static_set.size(), n = s.moved.size();
+  std::vector<float> mean2d(2 * (offset + n)), sum(n, 0.0f);
+  std::vector<int> seen(n, 0);
+  LayerGradients frozen[2];
+  SplatGradients outputs;
+  outputs.layers = frozen;
+  outputs.layer_count = 2;
+  outputs.mean2d = mean2d.data();
+  RenderSettings settings;
+  settings.sh_degree = 0;
+  RenderContext context;
+  BackwardWorkspace workspace;
+  PhotometricLoss loss;
+  Image grad;
+  for (int v = 0; v < s.views.size(); ++v) {
+    const Camera& camera = s.views.cameras[v];
+    ASSERT_TRUE(RenderForward(camera, layers, 2, settings, nullptr, &context).ok());
+    Image rendered(kWidth, kHeight, 3);
+    rendered.pixels = context.color;
+    PhotometricLossValue value;
+    ASSERT_TRUE(loss.Evaluate(rendered, s.views.images[v], &value, &grad).ok());
+    ASSERT_TRUE(RenderBackward(grad.pixels.data(), nullptr, &context, outputs, &workspace).ok());
+    for (size_t i = 0; i < n; ++i) {
+      if (context.splats.radius[offset + i] == 0.0f) continue;
+      sum[i] += ViewspaceGradientNorm(&mean2d[2 * (offset + i)], kWidth, kHeight);
+      ++seen[i];
+    }
+  }
+  ASSERT_EQ(measured.size(), n);
+  float largest = 0;
+  for (size_t i = 0; i < n; ++i) largest = std::max(largest, sum[i]);
+  ASSERT_GT(largest, 0.0f);
+  int nonzero = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const float expected = seen[i] ? sum[i] / static_cast<float>(seen[i]) : 0.0f;
+    EXPECT_NEAR(measured[i], expected, 1e-4f * largest) << "Gaussian " << i;
+    nonzero += measured[i] > 0;
+  }
+  EXPECT_GT(nonzero, 50);
 }
 
 }  // namespace

@@ -448,6 +448,37 @@ TEST(SplatBackwardTest, FrozenLeadingLayerIsSkippedAndTheOtherLayerIsUnchanged) 
   EXPECT_NE(all.positions[1], std::vector<float>(3 * sets[1].size(), 0.0f));
 }
 
+// After a focused pass (only the tiles the second layer reaches rendered), view-space
+// gradients cover the focus layer, bit for bit those of the whole render, and are zero for the
+// layer before it, whose other tiles were never blended.
+TEST(SplatBackwardTest, FocusedPassGivesViewspaceGradientsOfTheFocusLayers) {
+  const Camera camera = test::TestCamera(160, 120);
+  test::SceneOptions small = Options(60, 1);
+  small.extent = 0.25f;
+  const std::vector<GaussianSet> sets = {test::RandomGaussians(Options(900, 1), 63),
+                                         test::RandomGaussians(small, 64)};
+  const Loss loss = RandomLoss(camera, false, 12);
+  RenderSettings settings;
+  RenderContext ctx;
+  Gradients all(sets);
+  all.views[0] = LayerGradients();
+  ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &all).ok());
+  RenderSettings focused = settings;
+  focused.focus_layer = 1;
+  focused.focus_margin = 0;
+  Gradients focus(sets);
+  focus.views[0] = LayerGradients();
+  ASSERT_TRUE(RunForwardBackward(camera, sets, focused, loss, &ctx, &focus).ok());
+  const size_t first = 2 * sets[0].size();
+  EXPECT_TRUE(
+      std::equal(focus.mean2d.begin() + first, focus.mean2d.end(), all.mean2d.begin() + first));
+  EXPECT_EQ(focus.positions[1], all.positions[1]);
+  EXPECT_TRUE(std::all_of(focus.mean2d.begin(), focus.mean2d.begin() + first,
+                          [](float g) { return g == 0.0f; }));
+  EXPECT_TRUE(std::any_of(all.mean2d.begin(), all.mean2d.begin() + first,
+                          [](float g) { return g != 0.0f; }));
+}
+
 TEST(SplatBackwardTest, CulledGaussiansGetZeroGradients) {
   const Camera camera = test::TestCamera(32, 24);
   GaussianSet set = test::RandomGaussians(Options(6, 2), 12);

@@ -79,6 +79,16 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
                                  FrozenLayerViews* static_views) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   const RenderSettings settings = Settings(sh_degree, background, threads);
+  std::unique_ptr<FrozenLayerViews> own_views;
+  if (!static_views) {
+    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    static_views = own_views.get();
+  }
+  // The moved set's splats lie within the focus on it; the loss reads the tiles around it
+  // from the static layer's render, so their gradients are the whole render's.
+  RenderSettings focused = settings;
+  focused.focus_layer = 1;
+  focused.focus_margin = 0;
   const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
   const size_t offset = static_set.size(), n = moved.size();
   std::vector<float> sum(n, 0.0f), mean2d(2 * (offset + n));
@@ -90,17 +100,20 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
   outputs.mean2d = mean2d.data();
   RenderContext context;
   BackwardWorkspace workspace;
-  PhotometricLoss loss;
+  FocusedLoss loss;
   Image rendered, grad;
   for (int v = 0; v < views.size(); ++v) {
     const Camera& camera = views.cameras[v];
     const ProjectedSplats* static_projection = nullptr;
-    if (static_views) M4D_RETURN_IF_ERROR(static_views->Projection(v, camera, &static_projection));
+    M4D_RETURN_IF_ERROR(static_views->Projection(v, camera, &static_projection));
     M4D_RETURN_IF_ERROR(
-        RenderForward(camera, layers, 2, settings, nullptr, static_projection, &context));
+        RenderForward(camera, layers, 2, focused, nullptr, static_projection, &context));
     CopyRender(camera, context, &rendered);
+    const Image* static_render = nullptr;
+    M4D_RETURN_IF_ERROR(static_views->Render(v, camera, &static_render));
     PhotometricLossValue value;
-    M4D_RETURN_IF_ERROR(loss.Evaluate(rendered, views.images[v], &value, &grad));
+    M4D_RETURN_IF_ERROR(
+        loss.Evaluate(rendered, views.images[v], context.focus, static_render, &value, &grad));
     M4D_RETURN_IF_ERROR(RenderBackward(grad.pixels.data(), nullptr, &context, outputs, &workspace));
     for (size_t i = 0; i < n; ++i) {
       if (context.splats.radius[offset + i] == 0.0f) continue;

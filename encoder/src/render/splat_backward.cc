@@ -57,11 +57,15 @@ bool BackpropagateTiles(const float* dl_dcolor, const float* dl_dalpha, uint32_t
 }
 
 // The Gaussians of the leading frozen layers, which need no gradient unless every splat's 2D
-// gradients were asked for.
+// gradients were asked for. A focused pass rendered only the tiles the focus layers reach, so
+// the layers before them get no gradients at all.
 uint32_t FirstTrainable(const RenderContext& ctx, const SplatGradients& out) {
-  if (out.mean2d || out.color) return 0;
+  const int focus = std::max(0, ctx.settings.focus_layer);
   size_t first = 0;
-  for (int l = 0; l < out.layer_count && Frozen(out.layers[l]); ++l) first += ctx.layers[l].count;
+  for (int l = 0; l < out.layer_count; ++l) {
+    if (l >= focus && (out.mean2d || out.color || !Frozen(out.layers[l]))) break;
+    first += ctx.layers[l].count;
+  }
   return static_cast<uint32_t>(first);
 }
 
@@ -83,7 +87,8 @@ SplatGradient GatherSplatGradient(const RenderContext& ctx, const BackwardWorksp
   return grad;
 }
 
-void BackpropagateGaussians(const SplatGradients& out, RenderContext* ctx,
+// Gaussians before first_trainable get zero 2D gradients: their tiles may not be replayed.
+void BackpropagateGaussians(const SplatGradients& out, uint32_t first_trainable, RenderContext* ctx,
                             const BackwardWorkspace& ws) {
   const ProjectionConstants pc = MakeProjectionConstants(ctx->camera);
   ParallelForChunks(ctx->pool.get(), ctx->gaussian_count, kGaussianChunk,
@@ -100,7 +105,9 @@ void BackpropagateGaussians(const SplatGradients& out, RenderContext* ctx,
                           if (ctx->splats.radius[g] == 0.0f) {
                             if (!frozen) ZeroGradients(layer, i, out.layers[l]);
                           } else if (frozen) {
-                            if (out.mean2d || out.color) grad = GatherSplatGradient(*ctx, ws, g);
+                            if ((out.mean2d || out.color) && g >= first_trainable) {
+                              grad = GatherSplatGradient(*ctx, ws, g);
+                            }
                           } else {
                             grad = GatherSplatGradient(*ctx, ws, g);
                             BackpropagateProjection(pc, layer, ctx->settings.sh_degree, i, grad,
@@ -140,11 +147,11 @@ Status RenderBackward(const float* dl_dcolor, const float* dl_dalpha, RenderCont
   } catch (const std::bad_alloc&) {
     return Status(M4D_ERR_NOMEM, "backward: out of memory");
   }
-  if (!BackpropagateTiles(dl_dcolor, dl_dalpha, FirstTrainable(*context, out), context,
-                          workspace)) {
+  const uint32_t first_trainable = FirstTrainable(*context, out);
+  if (!BackpropagateTiles(dl_dcolor, dl_dalpha, first_trainable, context, workspace)) {
     return InvalidArg("backward: the forward pass's state was modified");
   }
-  BackpropagateGaussians(out, context, *workspace);
+  BackpropagateGaussians(out, first_trainable, context, *workspace);
   return Status::Ok();
 }
 

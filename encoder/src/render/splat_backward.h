@@ -24,7 +24,9 @@ struct SplatGradients {
   const LayerGradients* layers = nullptr;
   int layer_count = 0;
   // Optional, 2 per Gaussian (global index): dL/d(projected mean) in pixels, the view-space
-  // gradient of densification (see viewspace_gradient.h for the reference's units).
+  // gradient of densification (see viewspace_gradient.h for the reference's units). After a
+  // focused forward pass (RenderSettings::focus_layer), zero for the layers before the focus
+  // layer, as is `color`.
   float* mean2d = nullptr;
   // Optional, 3 per Gaussian (global index): dL/d(the splat's colour) before the clamp and the
   // SH basis. With dL/dcolour 1 everywhere, a splat's blending weight alpha T summed over the
