@@ -12,7 +12,7 @@ m4d=${2:-build/release/tools/m4d/m4d}
 before=${3:-}
 configs=${M4D_SCALING_CONFIGS:-"320x240x16 640x480x16 1352x1014x16 320x240x8 320x240x30"}
 opts=(--frames 3 --keyframe-iterations 300 --max-gaussians 60000 --prune-share 0.1
-      --lookahead 1 --motion-iterations 100 --decode-runs 1)
+      --lookahead 1 --first-motion-iterations 300 --motion-iterations 100 --decode-runs 1)
 mkdir -p "$out"
 
 # "motion compensation total" of bench's mean over inter frames.
