@@ -422,14 +422,18 @@ TEST(SplatBackwardTest, FrozenLayerGetsNothingAndTheOtherLayerIsUnchanged) {
             M4D_ERR_INVALID_ARG);
 }
 
+// Two layers: 900 Gaussians spread over the view, and 60 within 0.25 of the scene's centre.
+std::vector<GaussianSet> WideAndSmallLayers(unsigned seed) {
+  test::SceneOptions small = Options(60, 1);
+  small.extent = 0.25f;
+  return {test::RandomGaussians(Options(900, 1), seed), test::RandomGaussians(small, seed + 1)};
+}
+
 // Without view-space gradients a frozen leading layer needs none: its tiles and pixel groups
 // without a trained splat are skipped, and the trained layer's gradients stay bit for bit.
 TEST(SplatBackwardTest, FrozenLeadingLayerIsSkippedAndTheOtherLayerIsUnchanged) {
   const Camera camera = test::TestCamera(160, 120);
-  test::SceneOptions small = Options(60, 1);
-  small.extent = 0.25f;
-  const std::vector<GaussianSet> sets = {test::RandomGaussians(Options(900, 1), 61),
-                                         test::RandomGaussians(small, 62)};
+  const std::vector<GaussianSet> sets = WideAndSmallLayers(61);
   const Loss loss = RandomLoss(camera, true, 11);
   RenderSettings settings;
   RenderContext ctx;
@@ -453,10 +457,7 @@ TEST(SplatBackwardTest, FrozenLeadingLayerIsSkippedAndTheOtherLayerIsUnchanged) 
 // layer before it, whose other tiles were never blended.
 TEST(SplatBackwardTest, FocusedPassGivesViewspaceGradientsOfTheFocusLayers) {
   const Camera camera = test::TestCamera(160, 120);
-  test::SceneOptions small = Options(60, 1);
-  small.extent = 0.25f;
-  const std::vector<GaussianSet> sets = {test::RandomGaussians(Options(900, 1), 63),
-                                         test::RandomGaussians(small, 64)};
+  const std::vector<GaussianSet> sets = WideAndSmallLayers(63);
   const Loss loss = RandomLoss(camera, false, 12);
   RenderSettings settings;
   RenderContext ctx;
