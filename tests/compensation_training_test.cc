@@ -150,6 +150,97 @@ TEST(CompensationTrainingTest, SparsityWeightRemovesGaussians) {
   EXPECT_LT(heavy, light / 2) << light << " vs " << heavy;
 }
 
+size_t RemovedCount(const CompensationResult& result) {
+  return static_cast<size_t>(std::count(result.removed.begin(), result.removed.end(), 1));
+}
+
+// The early decision: the probe measures the Gaussians trained so far, halfway to the probe
+// iteration and at it, without disturbing the training. Where compensation serves (the blob's
+// missing colour) its gain is on course for the threshold and the training goes on; under a
+// threshold out of its reach it ends at the probe iteration, adding and removing nothing.
+TEST(CompensationTrainingTest, EarlyDecisionEndsOnlyTheTrainingThatWouldNotPay) {
+  Scene s = MakeScene();
+  CompensationCandidates candidates = Candidates(s, 0.0f);
+  CompensationOptions options;
+  options.iterations = 60;
+  options.probe_iteration = 20;
+  options.sh_degree = 0;
+  CompensationResult plain;
+  ASSERT_TRUE(TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &plain).ok());
+  const double before = MeanPsnr(s, s.moved, std::vector<uint8_t>(s.moved.size(), 0), {});
+  const double after = MeanPsnr(s, s.moved, plain.removed, plain.added);
+  std::vector<double> gains;
+  auto measure = [&](const GaussianSet& kept, const GaussianSet& added, double* gain) {
+    EXPECT_EQ(kept.size(), s.moved.size() - RemovedCount(plain));
+    EXPECT_GT(added.size(), 0u);
+    *gain = MeanPsnr(s, kept, std::vector<uint8_t>(kept.size(), 0), added) - before;
+    gains.push_back(*gain);
+    return Status::Ok();
+  };
+
+  options.probe_min_gain = after - before;  // reached at the last iteration
+  CompensationResult probed;
+  CompensationSharing sharing;
+  sharing.probe = measure;
+  ASSERT_TRUE(
+      TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &probed, sharing)
+          .ok());
+  ASSERT_EQ(gains.size(), 2u);
+  EXPECT_LT(gains[0], gains[1]);
+  EXPECT_LT(gains[1], after - before);
+  EXPECT_FALSE(probed.abandoned);
+  EXPECT_EQ(probed.probed_gain, gains[1]);
+  EXPECT_EQ(probed.removed, plain.removed);
+  EXPECT_EQ(probed.added.positions, plain.added.positions);
+  EXPECT_EQ(probed.added.sh, plain.added.sh);
+
+  // Twice what the line from the two probes reaches at the last iteration.
+  options.probe_min_gain = 2 * (gains[1] + (gains[1] - gains[0]) * 40 / 10);
+  gains.clear();
+  CompensationResult ended;
+  ASSERT_TRUE(
+      TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &ended, sharing).ok());
+  ASSERT_EQ(gains.size(), 2u);
+  EXPECT_TRUE(ended.abandoned);
+  EXPECT_EQ(ended.probed_gain, gains[1]);
+  EXPECT_EQ(ended.added.size(), 0u);
+  EXPECT_EQ(RemovedCount(ended), 0u);
+  EXPECT_EQ(ended.pruned_added, candidates.added.size());
+}
+
+// The viewspace measure's renders give the blend weights that decide which moved Gaussians no
+// view sees: shared with the training, it removes the same ones and trains the same result.
+TEST(CompensationTrainingTest, SharedBlendWeightsRemoveTheSameGaussians) {
+  Scene s = MakeScene();
+  const float black[3] = {0, 0, 0};
+  std::vector<float> gradient, weight;
+  ASSERT_TRUE(MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, black, 0, &gradient,
+                                        nullptr, &weight)
+                  .ok());
+  ASSERT_EQ(weight.size(), s.moved.size());
+  EXPECT_EQ(weight.back(), 0.0f);  // behind every camera
+  EXPECT_GT(*std::max_element(weight.begin(), weight.end()), 1.0f);
+  CompensationCandidates candidates = Candidates(s, 0.0f);
+  CompensationOptions options;
+  options.iterations = 30;
+  options.sh_degree = 0;
+  CompensationResult own, shared;
+  ASSERT_TRUE(TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &own).ok());
+  CompensationSharing sharing;
+  sharing.moved_blend_weight = &weight;
+  ASSERT_TRUE(
+      TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &shared, sharing)
+          .ok());
+  EXPECT_GE(own.removed_unseen, 1u);
+  EXPECT_EQ(shared.removed_unseen, own.removed_unseen);
+  EXPECT_EQ(shared.removed, own.removed);
+  EXPECT_EQ(shared.added.positions, own.added.positions);
+  weight.pop_back();
+  EXPECT_FALSE(
+      TrainCompensation(s.views, s.static_set, s.moved, candidates, options, &shared, sharing)
+          .ok());
+}
+
 // The measure renders only the tiles the moved set reaches and reads the rest from the static
 // layer's render: each moved Gaussian gets what a pass over the whole image gives it.
 TEST(CompensationTrainingTest, ViewspaceGradientsAreTheWholeImagesMean) {

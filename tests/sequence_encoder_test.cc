@@ -286,7 +286,8 @@ TEST(SequenceEncoderTest, ARestartedGopStartsFromItsFramesPrediction) {
 
 // Compensation is a mode decision: coded only where it raises the training views' PSNR by
 // compensation_min_gain. Always coded, it adds Gaussians; never coded, nothing is added or
-// removed, its measured gain is still reported, and the closed loop holds either way.
+// removed, its measured gain (at the probe) is still reported, and the closed loop holds
+// either way.
 TEST(SequenceEncoderTest, CompensationIsCodedOnlyWhereItGains) {
   constexpr int kCodedFrames = 3;
   Capture capture = MakeCapture();
@@ -312,8 +313,11 @@ TEST(SequenceEncoderTest, CompensationIsCodedOnlyWhereItGains) {
     EXPECT_EQ(never.frames[f].removed, 0u) << f;
   }
   EXPECT_GT(added, 0u);
-  // The first inter frame starts from the same keyframe: its gain was measured, not coded.
+  // The first inter frame starts from the same keyframe: its gain was measured, not coded,
+  // and never reaching 1e9 dB, its training ended at the probe.
   EXPECT_NE(never.frames[1].compensation_gain, 0.0);
+  EXPECT_TRUE(never.frames[1].compensation_abandoned);
+  EXPECT_FALSE(always.frames[1].compensation_abandoned);
   EXPECT_NEAR(never.frames[1].training_psnr,
               always.frames[1].training_psnr - always.frames[1].compensation_gain, 0.3);
 }

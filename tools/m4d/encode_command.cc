@@ -148,6 +148,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "code a frame's compensation only when it raises the training views' PSNR by "
                   "this many dB (negative: always, as the paper)")
       ->capture_default_str();
+  cmd->add_flag(
+      "--no-early-compensation-decision", [&o](int64_t) { o.compensation_early_decision = false; },
+      "train every frame's compensation to its last step, even when its gain is on course to "
+      "stay under --compensation-min-gain");
   cmd->add_option("--motion-min-gain", o.motion_min_gain,
                   "code a frame's motion only when it raises the training views' PSNR by more "
                   "than this many dB over showing the previous frame again (negative: always)")
@@ -309,6 +313,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"motion_views_per_step", o.motion.views_per_step},
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
+          {"compensation_early_decision", o.compensation_early_decision},
           {"motion_min_gain", o.motion_min_gain},
           {"appearance_step", o.motion.appearance_step},
           {"appearance_min_gain", o.appearance_min_gain},

@@ -143,6 +143,7 @@ nlohmann::json FrameReportJson(const FrameReport& f) {
           {"gop_ratio", f.ratio},
           {"training_psnr", f.training_psnr},
           {"compensation_gain", f.compensation_gain},
+          {"compensation_abandoned", f.compensation_abandoned},
           {"motion_gain", f.motion_gain},
           {"motion_skipped", f.motion_skipped},
           {"appearance_gain", f.appearance_gain},
@@ -172,6 +173,7 @@ Status FrameReportFromJson(const nlohmann::json& j, FrameReport* f) {
     f->ratio = j.at("gop_ratio").get<double>();
     f->training_psnr = j.at("training_psnr").get<double>();
     f->compensation_gain = j.at("compensation_gain").get<double>();
+    f->compensation_abandoned = j.value("compensation_abandoned", false);  // older reports
     f->motion_gain = j.at("motion_gain").get<double>();
     f->motion_skipped = j.at("motion_skipped").get<bool>();
     f->appearance_gain = j.at("appearance_gain").get<double>();

@@ -52,6 +52,28 @@ GaussianSet KeepOnly(const GaussianSet& set, const std::vector<uint8_t>& removed
 
 float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
 
+// model's Gaussians that the pruning would keep, the model itself unchanged.
+Status PrunedSet(const GaussianModel& model, float prune_opacity, int sh_degree, GaussianSet* set) {
+  GaussianSet all;
+  M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, sh_degree, &all));
+  std::vector<uint8_t> removed(model.size());
+  for (size_t i = 0; i < model.size(); ++i) {
+    removed[i] = Sigmoid(model.opacity_logits[i]) < prune_opacity;
+  }
+  *set = KeepOnly(all, removed);
+  return Status::Ok();
+}
+
+void Abandon(size_t moved_count, size_t candidate_count, int sh_degree,
+             CompensationResult* result) {
+  result->abandoned = true;
+  result->added = GaussianSet();
+  result->added.sh_degree = sh_degree;
+  result->removed.assign(moved_count, 0);
+  result->removed_unseen = 0;
+  result->pruned_added = candidate_count;
+}
+
 // Total blend weight over all views of every Gaussian of the layers after layer 0, the static
 // one. Their splats lie within the focus on them, so only its tiles are rendered.
 Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
@@ -76,7 +98,7 @@ Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers,
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
                                  const GaussianSet& moved, int sh_degree, const float* background,
                                  int threads, std::vector<float>* mean_gradient,
-                                 FrozenLayerViews* static_views) {
+                                 FrozenLayerViews* static_views, std::vector<float>* blend_weight) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   const RenderSettings settings = Settings(sh_degree, background, threads);
   std::unique_ptr<FrozenLayerViews> own_views;
@@ -89,6 +111,8 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
   RenderSettings focused = settings;
   focused.focus_layer = 1;
   focused.focus_margin = 0;
+  focused.blend_weights = blend_weight != nullptr;
+  if (blend_weight) blend_weight->assign(moved.size(), 0.0f);
   const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
   const size_t offset = static_set.size(), n = moved.size();
   std::vector<float> sum(n, 0.0f), mean2d(2 * (offset + n));
@@ -115,6 +139,9 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
     M4D_RETURN_IF_ERROR(
         loss.Evaluate(rendered, views.images[v], context.focus, static_render, &value, &grad));
     M4D_RETURN_IF_ERROR(RenderBackward(grad.pixels.data(), nullptr, &context, outputs, &workspace));
+    for (size_t i = 0; blend_weight && i < n; ++i) {
+      (*blend_weight)[i] += context.blend_weight[offset + i];
+    }
     for (size_t i = 0; i < n; ++i) {
       if (context.splats.radius[offset + i] == 0.0f) continue;
       sum[i] += ViewspaceGradientNorm(&mean2d[2 * (offset + i)], camera.width, camera.height);
@@ -131,13 +158,19 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
 Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_set,
                          const GaussianSet& moved, const CompensationCandidates& candidates,
                          const CompensationOptions& options, CompensationResult* result,
-                         FrozenLayerViews* static_views) {
+                         const CompensationSharing& sharing) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
+  result->abandoned = false;
+  result->probed_gain = 0;
   if (candidates.removed.size() != moved.size()) {
     return Status(M4D_ERR_INVALID_ARG, "compensation: removal flags differ from the moved set");
   }
   const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
+  if (sharing.moved_blend_weight && sharing.moved_blend_weight->size() != moved.size()) {
+    return Status(M4D_ERR_INVALID_ARG, "compensation: blend weights differ from the moved set");
+  }
   RenderContext context;
+  FrozenLayerViews* static_views = sharing.static_views;
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
     own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
@@ -147,12 +180,19 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   // Moved Gaussians that no training view sees are removed with the split parents.
   result->removed = candidates.removed;
   {
-    const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
     std::vector<float> weight;
-    M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 2, settings, static_views, &context, &weight));
+    size_t offset = 0;
+    if (sharing.moved_blend_weight) {
+      weight = *sharing.moved_blend_weight;
+    } else {
+      const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
+      M4D_RETURN_IF_ERROR(
+          BlendWeights(views, layers, 2, settings, static_views, &context, &weight));
+      offset = static_set.size();
+    }
     result->removed_unseen = 0;
     for (size_t i = 0; i < moved.size(); ++i) {
-      if (!result->removed[i] && weight[static_set.size() + i] < options.min_blend_weight) {
+      if (!result->removed[i] && weight[offset + i] < options.min_blend_weight) {
         result->removed[i] = 1;
         ++result->removed_unseen;
       }
@@ -219,6 +259,22 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     for (float& g : gradients.opacity_logits) g += static_cast<float>(options.sparsity_weight);
     StepGaussianOptimizer(gradients, kGaussianParameterCount, &optimizer, &model, nullptr);
     if (options.prune_interval > 0 && it % options.prune_interval == 0) prune();
+    if (sharing.probe && options.probe_iteration >= 2 &&
+        (it == options.probe_iteration / 2 || it == options.probe_iteration)) {
+      const double before = result->probed_gain;
+      GaussianSet added;
+      M4D_RETURN_IF_ERROR(
+          PrunedSet(model, options.prune_opacity, candidates.added.sh_degree, &added));
+      M4D_RETURN_IF_ERROR(sharing.probe(kept, added, &result->probed_gain));
+      const double per_iteration =
+          (result->probed_gain - before) / (options.probe_iteration - options.probe_iteration / 2);
+      const double projected = result->probed_gain + per_iteration * (options.iterations - it);
+      if (it == options.probe_iteration && projected < options.probe_min_gain) {
+        result->color_loss = color_count ? color_sum / color_count : 0.0;
+        Abandon(moved.size(), initial, candidates.added.sh_degree, result);
+        return Status::Ok();
+      }
+    }
   }
   result->color_loss = color_count ? color_sum / color_count : 0.0;
   prune();

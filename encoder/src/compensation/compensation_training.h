@@ -17,6 +17,7 @@
 #define M4D_ENCODER_COMPENSATION_COMPENSATION_TRAINING_H_
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/status.h"
@@ -43,7 +44,20 @@ struct CompensationOptions {
   float background[3] = {0, 0, 0};
   int threads = 0;
   uint64_t seed = 0;
+  // The early decision: the probe given to TrainCompensation measures the gain of the
+  // Gaussians trained so far after probe_iteration / 2 and probe_iteration iterations (0:
+  // never). When the gain extrapolated along that line to the last iteration stays under
+  // probe_min_gain, the training ends there. The gain rises ever more slowly once the
+  // candidates have settled (default scene, Panoptic basketball, the test scene of
+  // compensation_training_test.cc), so the line overestimates where the training would end.
+  int probe_iteration = 20;
+  double probe_min_gain = 0.1;  // dB
 };
+
+// Measures the gain (dB) of the frame as compensated so far: the moved set without its
+// removed Gaussians, and the added ones (pruned as at the end, not yet checked for being seen).
+using CompensationProbe =
+    std::function<Status(const GaussianSet& kept, const GaussianSet& added, double* gain)>;
 
 struct CompensationResult {
   GaussianSet added;             // the optimised compensated Gaussians that survived
@@ -51,22 +65,35 @@ struct CompensationResult {
   size_t pruned_added = 0;       // candidates removed by the sparsity pruning
   size_t removed_unseen = 0;     // moved Gaussians removed because no view sees them
   double color_loss = 0;         // mean L_color over the last pass through the views
+  bool abandoned = false;        // the early decision ended the training: nothing added
+  double probed_gain = 0;        // the probe's last measure (dB; 0: none)
 };
 
 // Mean over the training views of each moved Gaussian's view-space gradient norm (the
 // reference's NDC units), rendering static_set and moved together: the replication measure
-// of compensation_candidates.h. static_views as for TrainCompensation.
+// of compensation_candidates.h. static_views as CompensationSharing's. blend_weight, when
+// given, receives each moved Gaussian's blend weight summed over the views, from the same
+// renders.
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
                                  const GaussianSet& moved, int sh_degree, const float* background,
                                  int threads, std::vector<float>* mean_gradient,
-                                 FrozenLayerViews* static_views = nullptr);
+                                 FrozenLayerViews* static_views = nullptr,
+                                 std::vector<float>* blend_weight = nullptr);
 
-// static_views, when given, is static_set's for these views' cameras, kept for the GOP
-// (null: made for this call).
+// What the caller can share with TrainCompensation, each optional.
+struct CompensationSharing {
+  // static_set's for these views' cameras, kept for the GOP (null: made for the call).
+  FrozenLayerViews* static_views = nullptr;
+  // Each moved Gaussian's blend weight over the views, MeasureViewspaceGradients' (null:
+  // rendered for the call).
+  const std::vector<float>* moved_blend_weight = nullptr;
+  CompensationProbe probe;  // takes the early decision (null: none)
+};
+
 Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_set,
                          const GaussianSet& moved, const CompensationCandidates& candidates,
                          const CompensationOptions& options, CompensationResult* result,
-                         FrozenLayerViews* static_views = nullptr);
+                         const CompensationSharing& sharing = CompensationSharing());
 
 }  // namespace m4d
 

@@ -98,6 +98,10 @@ struct EncoderOptions {
   // that appears away from the moving parts: on the default scene, where the ball appears,
   // they cost 0.6 to 5.7 KB per frame for -0.24 to +0.16 dB (README).
   double compensation_min_gain = 0.1;
+  // The decision is also taken early (CompensationOptions::probe_iteration): a compensation
+  // whose gain is on course to stay under compensation_min_gain ends its training there and is
+  // not coded. Off: every frame trains all its candidates' iterations.
+  bool compensation_early_decision = true;
   // Motion is a mode decision too: a frame codes its estimated motion only when that raises
   // the training views' mean PSNR above the unmoved dynamic set's by more than this many dB;
   // otherwise it shows the previous frame's Gaussians again (SequenceEncoder::DecideMotion).

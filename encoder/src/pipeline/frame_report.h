@@ -40,6 +40,9 @@ struct FrameReport {
   // Training views' PSNR with the trained compensation minus without it (dB; inter frames
   // with compensation candidates). Below EncoderOptions::compensation_min_gain, none is coded.
   double compensation_gain = 0;
+  // The compensation's training ended early: it was on course to stay under
+  // EncoderOptions::compensation_min_gain (compensation_gain is then the probe's).
+  bool compensation_abandoned = false;
   // Training views' PSNR of the moved dynamic set minus the unmoved one (dB; inter frames with
   // motion estimation). Not above EncoderOptions::motion_min_gain: the frame codes no motion
   // (motion_skipped).

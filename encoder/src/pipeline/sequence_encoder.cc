@@ -490,10 +490,10 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   M4D_RETURN_IF_ERROR(EmptySet(options_.sh_degree, &compensation.added));
   if (options_.ablation.compensation) {
     if (callbacks_.stage) callbacks_.stage("compensation", frame);
-    std::vector<float> gradient;
+    std::vector<float> gradient, blend_weight;
     M4D_RETURN_IF_ERROR(MeasureViewspaceGradients(views, gop.static_set, moved, options_.sh_degree,
                                                   options_.background, options_.threads, &gradient,
-                                                  gop.static_views.get()));
+                                                  gop.static_views.get(), &blend_weight));
     std::vector<float> outputs = motion_on ? motion.motion : std::vector<float>(7 * moved.size());
     CompensationCandidates candidates =
         ProposeCompensation(moved, gradient, outputs, options_.compensation_thresholds,
@@ -504,8 +504,19 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     o.threads = options_.threads;
     o.seed = options_.seed + 104729u * static_cast<uint64_t>(frame);
     std::copy(options_.background, options_.background + 3, o.background);
-    M4D_RETURN_IF_ERROR(TrainCompensation(views, gop.static_set, moved, candidates, o,
-                                          &compensation, gop.static_views.get()));
+    o.probe_min_gain = options_.compensation_min_gain;
+    CompensationSharing sharing;
+    sharing.static_views = gop.static_views.get();
+    sharing.moved_blend_weight = &blend_weight;
+    if (options_.compensation_early_decision) {
+      sharing.probe = [&](const GaussianSet& kept, const GaussianSet& added, double* gain) {
+        return CompensationGain(moved, kept, added, gain);
+      };
+    }
+    M4D_RETURN_IF_ERROR(
+        TrainCompensation(views, gop.static_set, moved, candidates, o, &compensation, sharing));
+    report.compensation_abandoned = compensation.abandoned;
+    if (compensation.abandoned) report.compensation_gain = compensation.probed_gain;
   }
   M4D_RETURN_IF_ERROR(DecideCompensation(moved, &compensation, &report));
   report.seconds.compensation = Since(start);
@@ -678,6 +689,19 @@ Status SequenceEncoder::DecideAppearance(const AppearanceUpdate& appearance, Gau
   report->appearance_gain = with - without;
   report->appearance_skipped = !(report->appearance_gain > options_.appearance_min_gain);
   if (!report->appearance_skipped) *moved = std::move(changed);
+  return Status::Ok();
+}
+
+Status SequenceEncoder::CompensationGain(const GaussianSet& moved, const GaussianSet& kept,
+                                         const GaussianSet& added, double* gain) {
+  GaussianSet coded;
+  coded.sh_degree = moved.sh_degree;
+  AppendKept(kept, nullptr, &coded);
+  AppendKept(added, nullptr, &coded);
+  double with = 0, without = 0;
+  M4D_RETURN_IF_ERROR(TrainingPsnr(coded, &with));
+  M4D_RETURN_IF_ERROR(TrainingPsnr(moved, &without));
+  *gain = with - without;
   return Status::Ok();
 }
 

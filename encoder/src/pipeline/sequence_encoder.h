@@ -115,6 +115,10 @@ class SequenceEncoder {
   // more than options_.appearance_min_gain (sets report's appearance gain and skip flag).
   Status DecideAppearance(const AppearanceUpdate& appearance, GaussianSet* moved,
                           FrameReport* report);
+  // Training views' PSNR of kept (moved without the removed Gaussians) with added, minus
+  // moved's: the probe of compensation's early decision.
+  Status CompensationGain(const GaussianSet& moved, const GaussianSet& kept,
+                          const GaussianSet& added, double* gain);
   // Sets report's training PSNR and compensation gain; drops the compensation (nothing added
   // or removed) when it gains less than options_.compensation_min_gain.
   Status DecideCompensation(const GaussianSet& moved, CompensationResult* compensation,
