@@ -531,6 +531,39 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
   EXPECT_EQ(PhotoConsistentPoints(none, options, &again).code(), M4D_ERR_INVALID_ARG);
 }
 
+// Bounded, every candidate lies in the box, and the content inside it still gets its points:
+// the box is the half of the truth's bounds with x >= its middle.
+TEST(KeyframeTrainerTest, PhotoConsistentPointsStayInsideTheirBox) {
+  const Scene scene = MakeScene();
+  TrainingViews train;
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, scene.capture.TrainCameras(), &train).ok());
+  PhotoConsistencyOptions options;
+  options.points = 1000;
+  options.seed = 4;
+  options.bounded = true;
+  for (int a = 0; a < 3; ++a) {
+    options.box_min[a] = options.box_max[a] = scene.truth.positions[a];
+    for (size_t i = 0; i < scene.truth.size(); ++i) {
+      options.box_min[a] = std::min(options.box_min[a], scene.truth.positions[3 * i + a]);
+      options.box_max[a] = std::max(options.box_max[a], scene.truth.positions[3 * i + a]);
+    }
+  }
+  options.box_min[0] = 0.5f * (options.box_min[0] + options.box_max[0]);
+  PointCloud points;
+  ASSERT_TRUE(PhotoConsistentPoints(train, options, &points).ok());
+  ASSERT_GT(points.size(), 100u);
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const float p = points.positions[3 * i + a];
+      EXPECT_GE(p, options.box_min[a] - 1e-4f) << i;
+      EXPECT_LE(p, options.box_max[a] + 1e-4f) << i;
+    }
+  }
+  EXPECT_GT(ShareNearContent(scene, points.positions), 0.5);
+  options.box_min[1] = options.box_max[1] + 1.0f;
+  EXPECT_EQ(PhotoConsistentPoints(train, options, &points).code(), M4D_ERR_INVALID_ARG);
+}
+
 // Content near a rig's edge is inside few cameras' frusta, as a player near the Panoptic
 // dome's wall: it still gets points. A ring of 16 cameras looks at a cluster in the centre; a
 // second cluster off to the side is seen by a few of them only.

@@ -1,5 +1,6 @@
 #include "pipeline/retraining_growth.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -38,6 +39,22 @@ Status UnexplainedMasks(const GaussianModel& model, const TrainingViews& views,
   return Status::Ok();
 }
 
+// The box of the model's positions: seeds inside it leave the coded position range as the
+// prediction has it (photo_consistent_points.h).
+void BoundByModel(const GaussianModel& model, PhotoConsistencyOptions* photo) {
+  if (model.size() == 0) return;
+  photo->bounded = true;
+  for (int a = 0; a < 3; ++a) {
+    photo->box_min[a] = photo->box_max[a] = model.positions[a];
+  }
+  for (size_t i = 0; i < model.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      photo->box_min[a] = std::min(photo->box_min[a], model.positions[3 * i + a]);
+      photo->box_max[a] = std::max(photo->box_max[a], model.positions[3 * i + a]);
+    }
+  }
+}
+
 }  // namespace
 
 Status GrowForUnexplained(const TrainingViews& views, const RetrainingGrowthOptions& options,
@@ -59,6 +76,7 @@ Status GrowForUnexplained(const TrainingViews& views, const RetrainingGrowthOpti
   photo.ray_masks = &masks;
   photo.seed = options.seed;
   photo.threads = options.render.threads;
+  BoundByModel(*model, &photo);
   PointCloud points;
   M4D_RETURN_IF_ERROR(PhotoConsistentPoints(views, photo, &points));
   if (points.size() == 0) return Status::Ok();

@@ -11,7 +11,8 @@
 // - Seeds: photo-consistent points cast from those pixels, half the bound, so new content
 //   starts where it is instead of waiting for densification to creep to it from the nearest
 //   Gaussians (the default scene's object appearing at frame 10 reached 34.3 dB on the
-//   training views in 500 iterations, 3.6 dB below the frame before it).
+//   training views in 500 iterations, 3.6 dB below the frame before it). Only inside the
+//   box of the prediction's positions, so that they do not stretch its coded position range.
 #ifndef M4D_ENCODER_PIPELINE_RETRAINING_GROWTH_H_
 #define M4D_ENCODER_PIPELINE_RETRAINING_GROWTH_H_
 

@@ -24,6 +24,28 @@ void BackProject(const Camera& camera, float u, float v, float depth, float out[
   for (int a = 0; a < 3; ++a) out[a] = r[a] * c[0] + r[3 + a] * c[1] + r[6 + a] * c[2];
 }
 
+// Clips [*near, *far] to the camera depths at which the ray of pixel (u, v) is inside the
+// options' box (slabs per axis); false when nothing is left.
+bool ClipToBox(const Camera& camera, float u, float v, const PhotoConsistencyOptions& options,
+               float* near, float* far) {
+  if (!options.bounded) return *near < *far;
+  float origin[3], at_one[3];
+  BackProject(camera, u, v, 0.0f, origin);
+  BackProject(camera, u, v, 1.0f, at_one);
+  for (int a = 0; a < 3; ++a) {
+    const float step = at_one[a] - origin[a];
+    if (step == 0.0f) {
+      if (origin[a] < options.box_min[a] || origin[a] > options.box_max[a]) return false;
+      continue;
+    }
+    const float t0 = (options.box_min[a] - origin[a]) / step;
+    const float t1 = (options.box_max[a] - origin[a]) / step;
+    *near = std::max(*near, std::min(t0, t1));
+    *far = std::min(*far, std::max(t0, t1));
+  }
+  return *near < *far;
+}
+
 // The pixel's colour if the camera sees the point (in front of its near plane, inside).
 bool Sample(const Camera& camera, const Image& image, const float p[3], float rgb[3]) {
   const float* r = camera.rotation;
@@ -78,7 +100,9 @@ Found SweepRay(const TrainingViews& views, const Ray& ray, float far, int min_vi
   const Camera& camera = views.cameras[ray.view];
   const float* reference =
       views.images[ray.view].row(static_cast<int>(ray.v)) + 3 * static_cast<int>(ray.u);
-  const float near_inverse = 1.0f / camera.near_plane, far_inverse = 1.0f / far;
+  float near = camera.near_plane;
+  if (!ClipToBox(camera, ray.u, ray.v, options, &near, &far)) return Found();
+  const float near_inverse = 1.0f / near, far_inverse = 1.0f / far;
   Found found;
   float best = INFINITY;
   scores->clear();
@@ -105,7 +129,9 @@ Found SweepRay(const TrainingViews& views, const Ray& ray, float far, int min_vi
 Status CheckOptions(const TrainingViews& views, const PhotoConsistencyOptions& o) {
   if (views.size() == 0) return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: no views");
   if (o.rays_per_point < 1 || o.depths < 3 || o.depths > kMaxDepths || o.min_views < 2 ||
-      !(o.far_extents > 0) || !std::isfinite(o.far_extents) || !(o.distinctness > 0)) {
+      !(o.far_extents > 0) || !std::isfinite(o.far_extents) || !(o.distinctness > 0) ||
+      (o.bounded && !(o.box_min[0] <= o.box_max[0] && o.box_min[1] <= o.box_max[1] &&
+                      o.box_min[2] <= o.box_max[2]))) {
     return Status(M4D_ERR_INVALID_ARG, "photo-consistent points: bad options");
   }
   if (o.points * static_cast<size_t>(o.rays_per_point) > kMaxRays) {
