@@ -163,7 +163,18 @@ TEST(MotionFieldTest, GradientsMatchFiniteDifferences) {
   MotionParameters grad;
   ZeroGrid(config, stencil, &grad);
   grad.mlp = ZeroLike(params.mlp);
-  field.Backward(a.data(), b.data(), &grad);
+  field.Backward(a.data(), b.data(), true, &grad);
+
+  // A frozen MLP: the same grid gradient, and nothing added to the MLP's.
+  MotionParameters frozen;
+  ZeroGrid(config, stencil, &frozen);
+  frozen.mlp = ZeroLike(params.mlp);
+  field.Backward(a.data(), b.data(), false, &frozen);
+  for (int l = 0; l < config.num_levels; ++l) EXPECT_EQ(frozen.grid[l], grad.grid[l]) << l;
+  for (const MlpLayer& layer : frozen.mlp.layers) {
+    for (float w : layer.weights) EXPECT_EQ(w, 0.0f);
+    for (float w : layer.biases) EXPECT_EQ(w, 0.0f);
+  }
 
   // Central differences in float: eps and bound chosen for float forward passes of O(1).
   const float eps = 2e-3f;
@@ -316,6 +327,12 @@ TEST(LogisticEntropyModelTest, ProbabilitiesSumToOneOverTheIntegers) {
   double total = 0;
   for (float y : ys) total += std::exp2(-model.Bits(1, &y, 1, 1, 1.0f, nullptr, nullptr));
   EXPECT_NEAR(total, 1.0, 1e-5);  // the probability floor adds 4001 * 1e-9 at most
+  // Components 1/100 and 1/25 wide (the first beyond the shared-exp bound) and far tails.
+  LogisticEntropyModel narrow(1, 0.01f);
+  double narrow_total = 0;
+  for (float y : ys) narrow_total += std::exp2(-narrow.Bits(0, &y, 1, 1, 1.0f, nullptr, nullptr));
+  EXPECT_NEAR(narrow_total, 1.0, 1e-5);
+  EXPECT_GT(std::exp2(-narrow.Bits(0, &ys[2000], 1, 1, 1.0f, nullptr, nullptr)), 0.98);
   // Zero is the likeliest value of the initial model.
   float zero = 0, five = 5;
   EXPECT_LT(model.Bits(0, &zero, 1, 1, 1, nullptr, nullptr),

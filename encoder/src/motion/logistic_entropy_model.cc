@@ -9,6 +9,12 @@ namespace {
 constexpr double kMinProbability = 1e-9;  // keeps the rate finite for outliers
 constexpr double kLn2 = 0.69314718055994530942;
 
+// A component's bin edges are 1 / s apart in z, so exp(-z_low) = exp(-z_high) * exp(1 / s):
+// one exp per component and value instead of two (the rate was a seventh of a motion step).
+// Beyond kMaxSharedInvScale the product could overflow, and each edge takes its own exp.
+constexpr double kMaxSharedInvScale = 30.0;
+constexpr double kMaxExpArgument = 600.0;  // sigmoid(-600) is 0 for every sum below
+
 double Sigmoid(double z) { return 1.0 / (1.0 + std::exp(-z)); }
 
 }  // namespace
@@ -29,7 +35,7 @@ LogisticEntropyModel::LogisticEntropyModel(int distributions, float initial_scal
 double LogisticEntropyModel::Bits(int d, const float* y, size_t count, size_t stride, float scale,
                                   float* d_y, float* d_params) const {
   const float* p = &params_[static_cast<size_t>(d) * kParameters];
-  double weight[kComponents], mean[kComponents], inv_s[kComponents];
+  double weight[kComponents], mean[kComponents], inv_s[kComponents], edge_ratio[kComponents];
   double max_logit = *std::max_element(p, p + kComponents);
   double norm = 0;
   for (int k = 0; k < kComponents; ++k) {
@@ -37,6 +43,7 @@ double LogisticEntropyModel::Bits(int d, const float* y, size_t count, size_t st
     norm += weight[k];
     mean[k] = p[kComponents + k];
     inv_s[k] = std::exp(-p[2 * kComponents + k]);
+    edge_ratio[k] = inv_s[k] <= kMaxSharedInvScale ? std::exp(inv_s[k]) : 0.0;
   }
   for (double& w : weight) w /= norm;
 
@@ -48,7 +55,15 @@ double LogisticEntropyModel::Bits(int d, const float* y, size_t count, size_t st
     double comp[kComponents], dcomp_dmean[kComponents], dcomp_dlogs[kComponents];
     for (int k = 0; k < kComponents; ++k) {
       const double zh = (v + 0.5 - mean[k]) * inv_s[k], zl = (v - 0.5 - mean[k]) * inv_s[k];
-      const double sh = Sigmoid(zh), sl = Sigmoid(zl);
+      double sh, sl;
+      if (edge_ratio[k] > 0.0) {
+        const double eh = std::exp(std::min(-zh, kMaxExpArgument));
+        sh = 1.0 / (1.0 + eh);
+        sl = 1.0 / (1.0 + eh * edge_ratio[k]);
+      } else {
+        sh = Sigmoid(zh);
+        sl = Sigmoid(zl);
+      }
       const double ph = sh * (1 - sh), pl = sl * (1 - sl);  // dsigma/dz
       comp[k] = sh - sl;
       dcomp_dmean[k] = -(ph - pl) * inv_s[k];

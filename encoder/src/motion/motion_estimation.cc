@@ -43,8 +43,10 @@ GaussianLayerView MovedView(const GaussianSet& set, const std::vector<float>& po
   return view;
 }
 
-void ZeroParameters(MotionParameters* p) {
+// The MLP's gradient only when it is trained (a GOP's first inter frame).
+void ZeroParameters(bool with_mlp, MotionParameters* p) {
   for (auto& level : p->grid) std::fill(level.begin(), level.end(), 0.0f);
+  if (!with_mlp) return;
   for (MlpLayer& layer : p->mlp.layers) {
     std::fill(layer.weights.begin(), layer.weights.end(), 0.0f);
     std::fill(layer.biases.begin(), layer.biases.end(), 0.0f);
@@ -223,8 +225,9 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
         batch_gradients.Compute(layers, batch_views, appearance != nullptr, &gradients));
     for (int b = pass_start; b < batch; ++b) color_sum += gradients.losses[b];
     color_count += batch - pass_start;
-    ZeroParameters(&grad);
-    field.Backward(gradients.positions.data(), gradients.rotations.data(), &grad);
+    ZeroParameters(options.train_mlp, &grad);
+    field.Backward(gradients.positions.data(), gradients.rotations.data(), options.train_mlp,
+                   &grad);
     if (options.rate_term) {
       std::fill(entropy_grad.begin(), entropy_grad.end(), 0.0f);
       RateAndGradient(noisy, options.rate_weight / kBitsPerRateUnit, &grad, &entropy_grad,

@@ -55,7 +55,7 @@ void MotionField::Forward(const GridConfig& config, const float* steps,
   }
 }
 
-void MotionField::Backward(const float* d_positions, const float* d_rotations,
+void MotionField::Backward(const float* d_positions, const float* d_rotations, bool mlp_gradient,
                            MotionParameters* grad) {
   const Eigen::MatrixXf& out = batch_.outputs.back();
   Eigen::MatrixXf d_out(out.rows(), out.cols());
@@ -66,7 +66,8 @@ void MotionField::Backward(const float* d_positions, const float* d_rotations,
                         &d_out(0, col));
   }
   Eigen::MatrixXf d_features;
-  MlpBackward(params_->mlp, features_, batch_, d_out, &grad->mlp, &d_features);
+  MlpBackward(params_->mlp, features_, batch_, d_out, mlp_gradient ? &grad->mlp : nullptr,
+              &d_features);
   for (size_t m = 0; m < moved_.size(); ++m) {
     const size_t i = moved_[m];
     int f = 0;

@@ -35,8 +35,10 @@ class MotionField {
                float* moved_positions, float* moved_rotations);
 
   // Given dL/d(moved positions) and dL/d(moved rotations) of the last Forward, adds
-  // dL/d(grid values) and dL/d(MLP) into *grad (shaped like the parameters).
-  void Backward(const float* d_positions, const float* d_rotations, MotionParameters* grad);
+  // dL/d(grid values), and with `mlp_gradient` dL/d(MLP), into *grad (shaped like the
+  // parameters). A GOP's later frames keep its MLP: its gradient was a third of this pass.
+  void Backward(const float* d_positions, const float* d_rotations, bool mlp_gradient,
+                MotionParameters* grad);
 
   // The 7 MLP outputs of each moved Gaussian of the last Forward (translation, quaternion
   // increment), 7 x (moved count), and which Gaussian each column is.

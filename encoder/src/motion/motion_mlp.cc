@@ -69,13 +69,15 @@ void MlpBackward(const MlpWeights& mlp, const Eigen::MatrixXf& features, const M
   for (size_t j = mlp.layers.size(); j-- > 0;) {
     const MlpLayer& layer = mlp.layers[j];
     const Eigen::MatrixXf& input = j == 0 ? features : batch.outputs[j - 1];
-    MlpLayer& g = grad->layers[j];
-    Eigen::Map<RowMajor>(g.weights.data(), layer.outputs, layer.inputs).noalias() +=
-        d * input.transpose();
-    // Into an aligned vector first: a row sum assigned straight into the (16-byte aligned)
-    // vector sums its first rows in another order than the rest, by where the heap put it.
-    const Eigen::VectorXf d_biases = d.rowwise().sum();
-    Eigen::Map<Eigen::VectorXf>(g.biases.data(), layer.outputs) += d_biases;
+    if (grad) {
+      MlpLayer& g = grad->layers[j];
+      Eigen::Map<RowMajor>(g.weights.data(), layer.outputs, layer.inputs).noalias() +=
+          d * input.transpose();
+      // Into an aligned vector first: a row sum assigned straight into the (16-byte aligned)
+      // vector sums its first rows in another order than the rest, by where the heap put it.
+      const Eigen::VectorXf d_biases = d.rowwise().sum();
+      Eigen::Map<Eigen::VectorXf>(g.biases.data(), layer.outputs) += d_biases;
+    }
     if (j == 0 && d_features == nullptr) break;
     Eigen::MatrixXf d_input = Weights(layer).transpose() * d;
     if (j > 0) {

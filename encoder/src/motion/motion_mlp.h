@@ -26,8 +26,8 @@ MlpWeights InitialMotionMlp(int feature_count, const MlpConfig& config, float la
 // features: F x N. Fills batch->outputs; the motion outputs are batch->outputs.back() (7 x N).
 void MlpForward(const MlpWeights& mlp, const Eigen::MatrixXf& features, MlpBatch* batch);
 
-// Given dL/d(outputs) (7 x N), adds dL/dweights and dL/dbiases into *grad (same shapes as mlp)
-// and writes dL/dfeatures (F x N) into *d_features (may be null).
+// Given dL/d(outputs) (7 x N), adds dL/dweights and dL/dbiases into *grad (same shapes as mlp;
+// null for a frozen MLP) and writes dL/dfeatures (F x N) into *d_features (may be null).
 void MlpBackward(const MlpWeights& mlp, const Eigen::MatrixXf& features, const MlpBatch& batch,
                  const Eigen::MatrixXf& d_outputs, MlpWeights* grad, Eigen::MatrixXf* d_features);
 
