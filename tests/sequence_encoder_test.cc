@@ -442,6 +442,12 @@ TEST(SequenceEncoderTest, RejectsBadOptions) {
   o.compensation_min_gain = std::nan("");
   SequenceEncoder no_gain(capture, o);
   EXPECT_EQ(no_gain.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_INVALID_ARG);
+  for (double decay : {-0.1, 1.5, std::nan("")}) {
+    o = SmallOptions();
+    o.motion_rate_decay = decay;
+    SequenceEncoder bad_decay(capture, o);
+    EXPECT_EQ(bad_decay.Encode(EncoderCallbacks(), &report).code(), M4D_ERR_INVALID_ARG) << decay;
+  }
 }
 
 }  // namespace

@@ -129,6 +129,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "motion estimation of a GOP's first inter frame, which also trains the MLP")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--motion-rate-decay", o.motion_rate_decay,
+                  "share of lambda_2 the motion rate weight falls per inter frame of a GOP, "
+                  "down to 0.3 of it (0: constant)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--motion-views-per-step", o.motion.views_per_step,
                   "training views averaged in each motion estimation step")
       ->check(CLI::PositiveNumber)
@@ -311,6 +316,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
             o.decoupling.thresholds.error}},
           {"motion_iterations", {o.first_motion_iterations, o.motion.iterations}},
           {"motion_views_per_step", o.motion.views_per_step},
+          {"motion_rate_decay", o.motion_rate_decay},
           {"compensation_iterations", o.compensation.iterations},
           {"compensation_min_gain", o.compensation_min_gain},
           {"compensation_early_decision", o.compensation_early_decision},

@@ -92,6 +92,9 @@ struct EncoderOptions {
   // the bytes and PSNR of 300 and 400 (README "Faster inter frames"; 150 there lost 0.02-0.05
   // dB more over the sequence).
   int first_motion_iterations = 300;
+  // The motion rate weight falls by this share of lambda_2 per inter frame along a GOP, to
+  // kMinMotionRateShare of it (pipeline/motion_rate_schedule.h; 0: constant, the paper's).
+  double motion_rate_decay = 0.06;
   CompensationThresholds compensation_thresholds;
   CompensationOptions compensation;
   // Compensation is a mode decision: a frame codes its trained compensation only when that

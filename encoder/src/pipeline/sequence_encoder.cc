@@ -20,6 +20,7 @@
 #include "layers/motion_grid.h"
 #include "layers/motion_grid_writer.h"
 #include "layers/same_gaussian_set.h"
+#include "pipeline/motion_rate_schedule.h"
 #include "pipeline/retraining_growth.h"
 #include "pipeline/training_psnr_meter.h"
 #include "train/gaussian_model.h"
@@ -175,6 +176,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
   if (o.lookahead_step < 1) return bad("lookahead step must be at least one frame");
   if (o.retrain_iterations < 1) return bad("retrain iterations must be positive");
   if (o.first_motion_iterations < 0 || o.motion.iterations < 0) return bad("motion iterations");
+  if (!(o.motion_rate_decay >= 0 && o.motion_rate_decay <= 1)) return bad("motion rate decay");
   if (o.gop.max_length < 1 || o.gop.min_length < 1 || o.gop.fixed_length < 0) {
     return bad("GOP lengths");
   }
@@ -446,6 +448,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
     o.train_mlp = !gop.mlp_trained;
     if (o.train_mlp) o.iterations = options_.first_motion_iterations;
     o.rate_term = options_.ablation.rate_term && o.rate_term;
+    o.rate_weight = MotionRateWeight(o.rate_weight, length, options_.motion_rate_decay);
     if (views.size() < options_.appearance_min_views) o.appearance_step = 0.0f;
     o.sh_degree = options_.sh_degree;
     o.threads = options_.threads;
