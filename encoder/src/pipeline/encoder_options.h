@@ -94,7 +94,7 @@ struct EncoderOptions {
   int first_motion_iterations = 300;
   // The motion rate weight falls by this share of lambda_2 per inter frame along a GOP, to
   // kMinMotionRateShare of it (pipeline/motion_rate_schedule.h; 0: constant, the paper's).
-  double motion_rate_decay = 0.06;
+  double motion_rate_decay = 0.0;
   CompensationThresholds compensation_thresholds;
   CompensationOptions compensation;
   // Compensation is a mode decision: a frame codes its trained compensation only when that
