@@ -26,25 +26,25 @@ TEST(RatePoints, LadderSpendsMoreAtEveryStep) {
     EXPECT_GT(TotalBits(b.keyframe), TotalBits(a.keyframe));
     EXPECT_GE(TotalBits(b.compensation), TotalBits(a.compensation));
   }
-  // The paper's set, a fifth higher for the shorter motion estimation.
-  EXPECT_DOUBLE_EQ(points.front().motion_rate_weight, 1.2 * 5e-4);
-  EXPECT_DOUBLE_EQ(points.back().motion_rate_weight, 1.2 * 5e-5);
+  // The paper's set.
+  EXPECT_DOUBLE_EQ(points.front().motion_rate_weight, 5e-4);
+  EXPECT_DOUBLE_EQ(points.back().motion_rate_weight, 5e-5);
 }
 
 TEST(RatePoints, FindByName) {
   RatePointSettings p;
   ASSERT_TRUE(FindRatePoint("r3", &p).ok());
-  EXPECT_EQ(p.motion_rate_weight, 2.4e-4);
+  EXPECT_EQ(p.motion_rate_weight, 2e-4);
   const Status s = FindRatePoint("r6", &p);
   EXPECT_EQ(s.code(), M4D_ERR_INVALID_ARG);
   EXPECT_NE(s.message().find("r6"), std::string::npos);
 }
 
 TEST(RatePoints, LambdaTakesTheNearestPointsSettings) {
-  // 1.8e-4 is nearer 2.4e-4 (r3) than 1.2e-4 (r4) on a log scale: ln(4/3) < ln(3/2).
-  const RatePointSettings p = RatePointForLambda(1.8e-4);
+  // 1.5e-4 is nearer 2e-4 (r3) than 1e-4 (r4) on a log scale: ln(4/3) < ln(3/2).
+  const RatePointSettings p = RatePointForLambda(1.5e-4);
   EXPECT_EQ(p.name, "r3");
-  EXPECT_EQ(p.motion_rate_weight, 1.8e-4);
+  EXPECT_EQ(p.motion_rate_weight, 1.5e-4);
   EXPECT_EQ(RatePointForLambda(1.4e-4).name, "r4");
   EXPECT_EQ(RatePointForLambda(1.0).name, "r1");
   EXPECT_EQ(RatePointForLambda(0.0).name, "r5");  // no rate term: the finest point
@@ -56,7 +56,7 @@ TEST(RatePoints, ApplySetsWhatThePointSteers) {
   RatePointSettings p;
   ASSERT_TRUE(FindRatePoint("r1", &p).ok());
   ApplyRatePoint(p, &options);
-  EXPECT_EQ(options.motion.rate_weight, 6e-4);
+  EXPECT_EQ(options.motion.rate_weight, 5e-4);
   EXPECT_EQ(options.compensation_thresholds.gradient, p.replication_gradient);
   EXPECT_EQ(QuantizationName(options.quantization), "10/5/4/5/5/3 codebooks 0/1024/2");
   EXPECT_EQ(QuantizationName(options.compensation_quantization), QuantizationName(p.compensation));

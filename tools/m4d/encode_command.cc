@@ -63,8 +63,8 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
           ->check(CLI::NonNegativeNumber)
           ->capture_default_str();
   cmd->add_option("--rate-point", a->rate_point,
-                  "named rate point r1 (fewest bytes) .. r5: lambda_2 = 6e-4, 3.6e-4, 2.4e-4, "
-                  "1.2e-4, 6e-5, with tau_g and bit depths (README)")
+                  "named rate point r1 (fewest bytes) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, "
+                  "1e-4, 5e-5, with tau_g and bit depths (README)")
       ->excludes(lambda);
   cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
       ->check(CLI::Range(0, 3))

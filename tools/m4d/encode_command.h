@@ -23,7 +23,7 @@ struct EncodeArguments {
   CaptureArguments capture;
   EncoderOptions encoder;
   std::string rate_point;           // r1..r5, or empty for lambda's nearest
-  double lambda = 1.2e-4;           // lambda_2 when rate_point is empty (1.2e-4: r4)
+  double lambda = 1e-4;             // lambda_2 when rate_point is empty (1e-4: r4)
   int keyframe_iterations = 0;      // 0: the options' schedule
   bool random_init = false;         // KeyframeTrainingOptions::random_initialisation
   int max_gaussians = 0;            // cap of keyframe training and retraining (0: the schedule's)

@@ -40,10 +40,10 @@ namespace m4d {
 
 struct MotionEstimationOptions {
   // 100 left the grid under-trained (each of Panoptic's 27 views seen 4 times): frame 5 of the
-  // run above reached 29.58 dB with 100 iterations, 30.33 dB with 400. 130 with the rate points'
-  // lambda_2 raised by a fifth (rate_points.cc) is within 0.1 dB of 400 at the same bytes, in
-  // a third of the time (README "Faster inter frames").
-  int iterations = 130;
+  // run above reached 29.58 dB with 100 iterations, 30.33 dB with 400. With 130 the frames late
+  // in a GOP drifted 0.10-0.17 dB below 400's; 200 with the paper's lambda_2 keeps every frame
+  // within 0.1 dB of 400 at the same bytes, in half the time (README "Faster inter frames").
+  int iterations = 200;
   int views_per_step = 1;           // training views rendered for each step (their mean loss)
   float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)
   float mlp_learning_rate = 1e-3f;

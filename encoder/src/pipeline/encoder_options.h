@@ -88,9 +88,9 @@ struct EncoderOptions {
   DecouplingOptions decoupling;
   MotionEstimationOptions motion;
   // The first inter frame of a GOP also trains the MLP, which every later frame of the GOP
-  // uses: 300 steps there and 130 on the others, with lambda_2 1.2 times the paper's, make
-  // the bytes and PSNR of 300 and 400 (README "Faster inter frames"; 150 there lost 0.02-0.05
-  // dB more over the sequence).
+  // uses: 300 steps there and 200 on the others, with the paper's lambda_2, make the bytes
+  // and PSNR of 300 and 400 (README "Faster inter frames"; 150 there lost 0.02-0.05 dB more
+  // over the sequence).
   int first_motion_iterations = 300;
   // The motion rate weight falls by this share of lambda_2 per inter frame along a GOP, to
   // kMinMotionRateShare of it (pipeline/motion_rate_schedule.h; 0: constant, the paper's).
