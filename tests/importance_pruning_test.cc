@@ -104,6 +104,10 @@ TEST(ImportancePruningTest, KeepImportantRemovesWhatCoversLessThanTheMinimum) {
   // A share past the minimum removes the next ones too; a weight at the minimum stays.
   EXPECT_EQ(KeepImportant(weights, 0.21, 0.25), (std::vector<uint8_t>{1, 0, 1, 0, 0, 0}));
   EXPECT_EQ(KeepImportant(weights, 0.0, 0.2), (std::vector<uint8_t>{1, 0, 1, 1, 1, 1}));
+  // The minimum removes at most a third here (two of six), the least important first; the
+  // measured share is not bounded.
+  EXPECT_EQ(KeepImportant(weights, 0.0, 0.25, 1.0 / 3), (std::vector<uint8_t>{1, 0, 1, 0, 1, 1}));
+  EXPECT_EQ(KeepImportant(weights, 0.21, 0.25, 1.0 / 3), (std::vector<uint8_t>{1, 0, 1, 0, 0, 0}));
 }
 
 }  // namespace

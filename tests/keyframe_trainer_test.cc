@@ -130,7 +130,7 @@ std::vector<int> ValidationCameras(const Capture& capture) {
 struct TrainingRun {
   GaussianModel model;
   EvaluationResult initial_test, final_test, final_train;
-  DensifyCounts densified;
+  StrategyCounts densified;
   std::vector<TrainingProgress> progress;
 };
 

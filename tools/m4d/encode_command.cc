@@ -17,6 +17,7 @@
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
 #include "sequence_report_output.h"
+#include "strategy_arguments.h"
 #include "stream/frame_rate.h"
 #include "stream_check.h"
 #include "train/progress_bar.h"
@@ -95,6 +96,7 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "whose blending weight summed over the views is below this many pixels "
                   "(default 0.05; 0: none)")
       ->check(CLI::Range(0.0, 1e6));
+  AddStrategyOption(cmd, &a->strategy);
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe uniform at random in the "
                 "cameras' box instead of from photo-consistent points");
@@ -304,6 +306,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"min_importance_pixels", KeyframeSchedule(args).min_importance_pixels},
           {"quantization_aware_iterations", KeyframeSchedule(args).quantization_aware_iterations},
           {"random_init", args.random_init},
+          {"strategy", StrategyName(KeyframeSchedule(args).strategy)},
           {"retrain_iterations", o.retrain_iterations},
           {"rate_point", args.rate_point},
           {"lambda", o.motion.rate_weight},
@@ -360,6 +363,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   if (!args.prune.Automatic()) o.importance_prune_share = static_cast<float>(args.prune.share);
   if (args.prune_below >= 0) o.min_importance_pixels = static_cast<float>(args.prune_below);
   o.random_initialisation = args.random_init;
+  ApplyStrategy(args.strategy, &o);
   return o;
 }
 

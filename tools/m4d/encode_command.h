@@ -26,6 +26,7 @@ struct EncodeArguments {
   double lambda = 1e-4;             // lambda_2 when rate_point is empty (1e-4: r4)
   int keyframe_iterations = 0;      // 0: the options' schedule
   bool random_init = false;         // KeyframeTrainingOptions::random_initialisation
+  std::string strategy;             // KeyframeTrainingOptions::strategy (empty: the schedule's)
   int max_gaussians = 0;            // cap of keyframe training and retraining (0: the schedule's)
   double gaussians_per_pixel = -1;  // that cap per training pixel (< 0: the schedule's)
   int quantization_aware =

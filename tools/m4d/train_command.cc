@@ -16,6 +16,7 @@
 #include "ply/gaussian_ply.h"
 #include "prune_share_arguments.h"
 #include "rate_weight_arguments.h"
+#include "strategy_arguments.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
 #include "train/view_evaluation.h"
@@ -33,6 +34,8 @@ struct TrainArguments {
   int threads = 0;
   uint64_t seed = 1;
   bool random_init = false;
+  std::string strategy;             // empty: the schedule's
+  int max_gaussians = 0;            // 0: the schedule's
   double gaussians_per_pixel = -1;  // < 0: the schedule's
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
@@ -98,6 +101,8 @@ Status RunTrain(const TrainArguments& args) {
   }
   options.sh_degree = args.sh_degree;
   options.random_initialisation = args.random_init;
+  ApplyStrategy(args.strategy, &options);
+  if (args.max_gaussians > 0) options.densification.max_gaussians = args.max_gaussians;
   if (args.gaussians_per_pixel >= 0) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
@@ -117,8 +122,10 @@ Status RunTrain(const TrainArguments& args) {
   const auto start = std::chrono::steady_clock::now();
   ProgressBar bar;
   GaussianModel model;
+  KeyframeTrainingReport report;
   M4D_RETURN_IF_ERROR(TrainKeyframe(
-      capture, args.frame, options, [&](const TrainingProgress& p) { bar.Update(p); }, &model));
+      capture, args.frame, options, [&](const TrainingProgress& p) { bar.Update(p); }, &model,
+      &report));
   bar.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -133,7 +140,8 @@ Status RunTrain(const TrainArguments& args) {
   std::printf("\n%-28s %s\n", "keyframe training", capture.layout.c_str());
   std::printf("%-28s %d (%d views of %dx%d)\n", "frame", args.frame, train.size(),
               train.cameras[0].width, train.cameras[0].height);
-  std::printf("%-28s %d\n", "iterations", options.iterations);
+  std::printf("%-28s %d (%s)\n", "iterations", options.iterations, StrategyName(options.strategy));
+  PrintTrainingReport(report);
   std::printf("%-28s %zu (cap %zu)\n", "Gaussians", model.size(), GaussianCap(options, train));
   std::printf("%-28s %.1f s (%.1f ms per iteration)\n", "wall time", seconds,
               1000.0 * seconds / options.iterations);
@@ -198,6 +206,11 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
   cmd->add_flag("--random-init", args->random_init,
                 "without initial points, start uniform at random in the cameras' box (the "
                 "reference's way) instead of from photo-consistent points");
+  AddStrategyOption(cmd, &args->strategy);
+  cmd->add_option("--max-gaussians", args->max_gaussians,
+                  "at most this many Gaussians (MCMC: exactly this many, if the pixel cap allows; "
+                  "default: the schedule's)")
+      ->check(CLI::Range(1, 16777216));
   cmd->add_option("--iterations", args->iterations,
                   "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);

@@ -60,6 +60,16 @@ void AdamOptimizer::KeepRows(const std::vector<uint8_t>& keep) {
   rows_ = static_cast<size_t>(std::count(keep.begin(), keep.end(), uint8_t{1}));
 }
 
+void AdamOptimizer::ZeroRows(const std::vector<uint32_t>& rows) {
+  for (Parameter& p : params_) {
+    const size_t width = static_cast<size_t>(p.width);
+    for (uint32_t r : rows) {
+      std::fill_n(p.m.begin() + static_cast<std::ptrdiff_t>(r * width), width, 0.0f);
+      std::fill_n(p.v.begin() + static_cast<std::ptrdiff_t>(r * width), width, 0.0f);
+    }
+  }
+}
+
 void AdamOptimizer::ResetMoments(int parameter) {
   Parameter& p = params_[parameter];
   std::fill(p.m.begin(), p.m.end(), 0.0f);

@@ -52,6 +52,8 @@ class AdamOptimizer {
   // the reference gives its densified Gaussians.
   void AppendZeroRows(size_t count);
   void KeepRows(const std::vector<uint8_t>& keep);
+  // Zeroes every parameter's moments of the listed rows (a relocated Gaussian starts afresh).
+  void ZeroRows(const std::vector<uint32_t>& rows);
   // Zeroes the moments of a parameter (the reference does so when it resets opacities).
   void ResetMoments(int parameter);
 

@@ -15,21 +15,6 @@ float MaxScale(const GaussianModel& model, size_t i) {
   return std::exp(std::max({s[0], s[1], s[2]}));
 }
 
-// Rotation matrix (row-major) of the normalised quaternion w, x, y, z.
-void RotationMatrix(const float* q, float r[9]) {
-  const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  const float inv = norm > 0 ? 1.0f / norm : 0.0f;
-  const float w = q[0] * inv, x = q[1] * inv, y = q[2] * inv, z = q[3] * inv;
-  if (norm == 0) {
-    const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    std::copy_n(identity, 9, r);
-    return;
-  }
-  r[0] = 1 - 2 * (y * y + z * z), r[1] = 2 * (x * y - w * z), r[2] = 2 * (x * z + w * y);
-  r[3] = 2 * (x * y + w * z), r[4] = 1 - 2 * (x * x + z * z), r[5] = 2 * (y * z - w * x);
-  r[6] = 2 * (x * z - w * y), r[7] = 2 * (y * z + w * x), r[8] = 1 - 2 * (x * x + y * y);
-}
-
 // The Gaussians that densify: mean gradient at or above the threshold, at most `budget` of
 // them (largest gradients first, ties to the lower index), in index order.
 std::vector<uint32_t> Candidates(const DensificationStats& stats, float threshold, size_t budget) {
@@ -56,7 +41,7 @@ void PlaceSplitChildren(const std::vector<uint32_t>& parents, size_t first, floa
     const size_t row = first + c;
     const uint32_t parent = parents[c % parents.size()];
     float r[9];
-    RotationMatrix(&model->rotations[4 * size_t{parent}], r);
+    QuaternionMatrix(&model->rotations[4 * size_t{parent}], r);
     float sample[3];
     for (int a = 0; a < 3; ++a) {
       sample[a] = rng->Normal() * std::exp(model->log_scales[3 * size_t{parent} + a]);

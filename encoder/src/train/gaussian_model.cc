@@ -1,6 +1,7 @@
 #include "train/gaussian_model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "train/row_edit.h"
@@ -54,11 +55,33 @@ void GaussianModel::AppendCopies(const std::vector<uint32_t>& rows) {
   }
 }
 
+void GaussianModel::Append(const GaussianModel& other) {
+  for (int p = 0; p < kGaussianParameterCount; ++p) {
+    const auto param = static_cast<GaussianParameter>(p);
+    const std::vector<float>& from = other.values(param);
+    values(param).insert(values(param).end(), from.begin(), from.end());
+  }
+}
+
 void GaussianModel::Keep(const std::vector<uint8_t>& keep) {
   for (int p = 0; p < kGaussianParameterCount; ++p) {
     const auto param = static_cast<GaussianParameter>(p);
     KeepRows(keep, static_cast<size_t>(width(param)), &values(param));
   }
+}
+
+void QuaternionMatrix(const float* q, float r[9]) {
+  const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (norm == 0) {
+    const float identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::copy_n(identity, 9, r);
+    return;
+  }
+  const float inv = 1.0f / norm;
+  const float w = q[0] * inv, x = q[1] * inv, y = q[2] * inv, z = q[3] * inv;
+  r[0] = 1 - 2 * (y * y + z * z), r[1] = 2 * (x * y - w * z), r[2] = 2 * (x * z + w * y);
+  r[3] = 2 * (x * y + w * z), r[4] = 1 - 2 * (x * x + z * z), r[5] = 2 * (y * z - w * x);
+  r[6] = 2 * (x * z - w * y), r[7] = 2 * (y * z + w * x), r[8] = 1 - 2 * (x * x + y * y);
 }
 
 GaussianLayerView LayerView(const GaussianModel& model) {

@@ -48,8 +48,14 @@ struct GaussianModel {
   void Resize(size_t n);
   // Appends copies of the listed Gaussians; keeps the Gaussians with keep[i] != 0.
   void AppendCopies(const std::vector<uint32_t>& rows);
+  // Appends every Gaussian of `other` (same SH degree).
+  void Append(const GaussianModel& other);
   void Keep(const std::vector<uint8_t>& keep);
 };
+
+// The row-major rotation matrix of quaternion q (w, x, y, z), normalised first; the identity
+// for a zero quaternion.
+void QuaternionMatrix(const float* q, float r[9]);
 
 // For RenderForward.
 GaussianLayerView LayerView(const GaussianModel& model);

@@ -30,18 +30,22 @@ Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
 }
 
 std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share,
-                                   double min_weight) {
+                                   double min_weight, double max_fraction) {
   std::vector<uint32_t> order(weights.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(),
                    [&](uint32_t a, uint32_t b) { return weights[a] < weights[b]; });
   const double budget = share * std::accumulate(weights.begin(), weights.end(), 0.0);
   std::vector<uint8_t> keep(weights.size(), 1);
+  const auto max_removed = static_cast<size_t>(max_fraction * static_cast<double>(weights.size()));
   double removed = 0;
+  size_t count = 0;
   for (uint32_t i : order) {
     removed += weights[i];
-    if (removed > budget && !(weights[i] < min_weight)) break;
+    const bool in_share = !(removed > budget);
+    if (!in_share && (!(weights[i] < min_weight) || count >= max_removed)) break;
     keep[i] = 0;
+    ++count;
   }
   return keep;
 }

@@ -26,9 +26,10 @@ Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
 
 // keep[i] = 0 for the least important Gaussians whose weights sum to at most `share` of the
 // total (ties broken by index) and for every Gaussian whose weight is below `min_weight`
-// (pixels: what it covers in all the views together), 1 for the others.
+// (pixels: what it covers in all the views together), 1 for the others; at most max_fraction
+// of the Gaussians are removed, the least important first.
 std::vector<uint8_t> KeepImportant(const std::vector<double>& weights, double share,
-                                   double min_weight = 0.0);
+                                   double min_weight = 0.0, double max_fraction = 1.0);
 
 }  // namespace m4d
 

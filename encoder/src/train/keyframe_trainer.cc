@@ -9,6 +9,7 @@
 
 #include "metrics/psnr.h"
 #include "render/splat_renderer.h"
+#include "train/adaptive_density_control.h"
 #include "train/gaussian_optimizer.h"
 #include "train/importance_pruning.h"
 #include "train/keyframe_rate_term.h"
@@ -131,6 +132,13 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
       d.max_gaussians > kMaxRenderGaussians) {
     return OptionError("densification settings");
   }
+  const McmcSettings& m = o.mcmc;
+  if (!(m.growth >= 0.0f && m.growth <= 1.0f) || !(m.min_opacity > 0.0f && m.min_opacity < 1.0f) ||
+      !(m.noise_learning_rate >= 0.0f) || !std::isfinite(m.noise_learning_rate) ||
+      !(m.opacity_regularization >= 0.0f) || !std::isfinite(m.opacity_regularization) ||
+      !(m.scale_regularization >= 0.0f) || !std::isfinite(m.scale_regularization)) {
+    return OptionError("MCMC settings");
+  }
   const GaussianLearningRates& r = o.learning_rates;
   for (float lr : {r.position.initial, r.position.final, r.sh_dc, r.sh_rest, r.opacity, r.scaling,
                    r.rotation}) {
@@ -168,20 +176,23 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   gradients_ = GaussianModel();
   gradients_.sh_degree = model_.sh_degree;
   optimizer_ = MakeGaussianOptimizer(model_, options.learning_rates, scene_extent_);
-  stats_.Reset(model_.size());
+  strategy_ =
+      MakeDensificationStrategy(options_, scene_extent_, options_.densification.max_gaussians);
+  strategy_->Reset(model_.size());
   iteration_ = 0;
   active_sh_degree_ = std::min(options.start_sh_degree, model_.sh_degree);
   rng_.emplace(options.seed);
   view_order_.clear();
   view_cursor_ = 0;
-  last_reset_ = 0;
   pool_ = std::make_shared<ThreadPool>(options.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
   camera_colour_.Init(views_.size(), options.camera_colour_learning_rate);
   progress_ = TrainingProgress();
   progress_.iterations = options.iterations;
   progress_.gaussians = model_.size();
-  densify_totals_ = DensifyCounts();
+  importance_pruned_ = 0;
+  tenths_.clear();
+  largest_removal_ = 0;
   return Status::Ok();
 }
 
@@ -241,18 +252,6 @@ Status KeyframeTrainer::ForwardBackward(int view) {
   return Status::Ok();
 }
 
-Status KeyframeTrainer::Densify() {
-  const bool prune_by_size =
-      options_.opacity_reset_interval > 0 && iteration_ > options_.opacity_reset_interval;
-  DensifyCounts counts;
-  M4D_RETURN_IF_ERROR(DensifyAndPrune(options_.densification, scene_extent_, prune_by_size, &*rng_,
-                                      &model_, &optimizer_, &stats_, &counts));
-  densify_totals_.cloned += counts.cloned;
-  densify_totals_.split += counts.split;
-  densify_totals_.pruned += counts.pruned;
-  return Status::Ok();
-}
-
 bool KeyframeTrainer::QuantizationAware() const {
   return iteration_ > options_.iterations - options_.quantization_aware_iterations;
 }
@@ -262,11 +261,15 @@ Status KeyframeTrainer::PruneUnimportant() {
   M4D_RETURN_IF_ERROR(
       BlendingWeights(model_, views_, Settings(), &context_, &backward_workspace_, &weights));
   std::vector<uint8_t> keep =
-      KeepImportant(weights, options_.importance_prune_share, options_.min_importance_pixels);
+      KeepImportant(weights, options_.importance_prune_share, options_.min_importance_pixels,
+                    options_.densification.max_prune_fraction);
   std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(options_.frozen_gaussians), 1);
   const size_t before = model_.size();
   KeepGaussians(keep, &model_, &optimizer_, nullptr);
   importance_pruned_ += before - model_.size();
+  largest_removal_ =
+      std::max(largest_removal_, static_cast<double>(before - model_.size()) /
+                                     static_cast<double>(std::max<size_t>(before, 1)));
   return Status::Ok();
 }
 
@@ -281,23 +284,22 @@ Status KeyframeTrainer::Step() {
   }
   M4D_RETURN_IF_ERROR(ForwardBackward(NextView()));
 
-  bool densified = false;
-  GaussianParameter skip = kGaussianParameterCount;
-  if (it < options_.densify_until) {
-    const Camera& camera = context_.camera;
-    stats_.Accumulate(context_.splats, mean2d_.data(), camera.width, camera.height);
-    const bool recovering = last_reset_ > 0 && it - last_reset_ < options_.reset_recovery;
-    if (it > options_.densify_from && options_.densify_interval > 0 &&
-        it % options_.densify_interval == 0 && !recovering) {
-      M4D_RETURN_IF_ERROR(Densify());
-      densified = true;
-    }
-    if (options_.opacity_reset_interval > 0 && it % options_.opacity_reset_interval == 0) {
-      ResetOpacity(options_.opacity_reset_value, &model_, &optimizer_);
-      skip = kParamOpacityLogits;
-      last_reset_ = it;
-    }
+  const Camera& camera = context_.camera;
+  StrategyStep step;
+  step.iteration = it;
+  step.position_learning_rate = optimizer_.learning_rate(kGroupPositions);
+  step.splats = &context_.splats;
+  step.mean2d = mean2d_.data();
+  step.width = camera.width;
+  step.height = camera.height;
+  const StrategyState state{&model_, &optimizer_, &*rng_};
+  StrategyOutcome outcome;
+  M4D_RETURN_IF_ERROR(strategy_->AfterBackward(step, state, &outcome));
+  if (outcome.before > 0) {
+    largest_removal_ = std::max(largest_removal_, static_cast<double>(outcome.removed) /
+                                                      static_cast<double>(outcome.before));
   }
+  bool densified = outcome.rows_changed;
   const bool prunes =
       options_.importance_prune_share > 0.0f || options_.min_importance_pixels > 0.0f;
   if (prunes && it == options_.densify_until) {
@@ -309,12 +311,24 @@ Status KeyframeTrainer::Step() {
       AddKeyframeRateGradients(model_, options_.quantization, options_.rate_weight,
                                options_.frozen_gaussians, &gradients_);
     }
+    strategy_->Regularize(model_, &gradients_);
     ZeroLeadingRows(options_.frozen_gaussians, &gradients_);
-    StepGaussianOptimizer(gradients_, skip, &optimizer_, &model_, pool_.get());
+    StepGaussianOptimizer(gradients_, outcome.skip_step, &optimizer_, &model_, pool_.get());
   }
+  strategy_->AfterStep(step, state);
   progress_.iteration = it;
   progress_.gaussians = model_.size();
+  RecordTenth();
   return Status::Ok();
+}
+
+void KeyframeTrainer::RecordTenth() {
+  const int total = options_.iterations;
+  const int tenth = static_cast<int>(tenths_.size()) + 1;
+  if (total <= 0 || tenth > 10 || iteration_ < (static_cast<int64_t>(total) * tenth + 9) / 10) {
+    return;
+  }
+  tenths_.push_back({iteration_, model_.size(), progress_.loss, progress_.psnr});
 }
 
 Status KeyframeTrainer::Train(const ProgressCallback& progress, int progress_every) {
@@ -347,47 +361,119 @@ Status KeyframeTrainer::Evaluate(const TrainingViews& views, EvaluationResult* r
   return EvaluateViews(model_, views, Settings(), &context_, result);
 }
 
-Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
-                            const KeyframeTrainingOptions& options, GaussianModel* initial) {
-  PointInitialisationOptions init;
-  init.threads = options.threads;
-  init.sh_degree = options.sh_degree;
-  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
-  if (capture.initial_points.size() > 0) {
-    return InitialiseFromPoints(capture.initial_points, init, initial);
+StrategyHolder MakeDensificationStrategy(const KeyframeTrainingOptions& options, float scene_extent,
+                                         size_t cap) {
+  if (options.strategy == DensificationStrategyKind::kMcmc) {
+    McmcSettings mcmc = options.mcmc;
+    mcmc.max_gaussians = cap;
+    mcmc.refine_from = options.densify_from;
+    mcmc.refine_until = options.densify_until;
+    mcmc.refine_interval = options.densify_interval;
+    mcmc.frozen = options.frozen_gaussians;
+    return StrategyHolder(std::make_unique<McmcDensification>(mcmc));
   }
-  if (!options.random_initialisation) {
-    PhotoConsistencyOptions photo;
-    photo.points = start_points;
-    photo.seed = options.seed;
-    photo.threads = options.threads;
-    PointCloud points;
-    M4D_RETURN_IF_ERROR(PhotoConsistentPoints(views, photo, &points));
-    if (points.size() == 0) {
-      return Status(M4D_ERR_INVALID_ARG,
-                    "keyframe training: no point is seen by enough views to start from");
-    }
-    return InitialiseFromPoints(points, init, initial);
-  }
+  AdaptiveDensitySchedule adc;
+  adc.settings = options.densification;
+  adc.settings.max_gaussians = cap;
+  adc.settings.frozen = options.frozen_gaussians;
+  adc.densify_from = options.densify_from;
+  adc.densify_until = options.densify_until;
+  adc.densify_interval = options.densify_interval;
+  adc.opacity_reset_interval = options.opacity_reset_interval;
+  adc.opacity_reset_value = options.opacity_reset_value;
+  adc.reset_recovery = options.reset_recovery;
+  return StrategyHolder(std::make_unique<AdaptiveDensityControl>(adc, scene_extent));
+}
+
+namespace {
+
+// Photo-consistent points seen by at least `min_views` views.
+Status PhotoConsistentStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                            size_t points, int min_views, PointCloud* cloud) {
+  PhotoConsistencyOptions photo;
+  photo.points = points;
+  photo.min_views = min_views;
+  photo.seed = options.seed;
+  photo.threads = options.threads;
+  return PhotoConsistentPoints(views, photo, cloud);
+}
+
+// Points uniform in the cameras' box.
+Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                   size_t points, const PointInitialisationOptions& init, GaussianModel* initial) {
   const SceneBounds bounds = CameraSceneBounds(views.cameras);
   float lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
     lo[a] = bounds.centre[a] - bounds.extent;
     hi[a] = bounds.centre[a] + bounds.extent;
   }
-  return InitialiseRandom(lo, hi, start_points, options.seed, init, initial);
+  return InitialiseRandom(lo, hi, points, options.seed, init, initial);
+}
+
+}  // namespace
+
+Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
+                            const KeyframeTrainingOptions& options, GaussianModel* initial,
+                            std::vector<KeyframeStart>* tried) {
+  std::vector<KeyframeStart> starts;
+  if (tried == nullptr) tried = &starts;
+  tried->clear();
+  PointInitialisationOptions init;
+  init.threads = options.threads;
+  init.sh_degree = options.sh_degree;
+  // The MCMC paper starts every Gaussian half opaque: relocation needs opaque ones to sample.
+  if (options.strategy == DensificationStrategyKind::kMcmc) init.opacity = 0.5f;
+  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
+  const size_t enough = std::min(kMinStartPoints, std::max<size_t>(start_points / 2, 1));
+  if (capture.initial_points.size() > 0) {
+    tried->push_back({"capture points", capture.initial_points.size(), true});
+    return InitialiseFromPoints(capture.initial_points, init, initial);
+  }
+  PointCloud found;  // the most points a sweep found, kept in the random start
+  if (!options.random_initialisation) {
+    for (int min_views : {3, 2}) {
+      PointCloud points;
+      M4D_RETURN_IF_ERROR(PhotoConsistentStart(views, options, start_points, min_views, &points));
+      const bool taken = points.size() >= enough;
+      tried->push_back({"photo-consistent points, " + std::to_string(min_views) + " views",
+                        points.size(), taken});
+      if (taken) return InitialiseFromPoints(points, init, initial);
+      if (points.size() > found.size()) found = std::move(points);
+    }
+  }
+  GaussianModel random;
+  GaussianModel* box = found.size() > 0 ? &random : initial;
+  M4D_RETURN_IF_ERROR(RandomStart(views, options, start_points - found.size(), init, box));
+  if (found.size() > 0) {
+    GaussianModel swept;
+    M4D_RETURN_IF_ERROR(InitialiseFromPoints(found, init, &swept));
+    swept.Append(random);
+    *initial = std::move(swept);
+  }
+  tried->push_back({found.size() > 0 ? "random in the cameras' box, with the points found"
+                                     : "random in the cameras' box",
+                    initial->size(), true});
+  return Status::Ok();
 }
 
 Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                     const ProgressCallback& progress, GaussianModel* model) {
+                     const ProgressCallback& progress, GaussianModel* model,
+                     KeyframeTrainingReport* report) {
   M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
   TrainingViews views;
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
   GaussianModel initial;
-  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial));
+  std::vector<KeyframeStart> starts;
+  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial, &starts));
   KeyframeTrainer trainer;
   M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
   M4D_RETURN_IF_ERROR(trainer.Train(progress));
+  if (report != nullptr) {
+    report->starts = std::move(starts);
+    report->tenths = trainer.tenths();
+    report->counts = trainer.densify_totals();
+    report->largest_removal = trainer.largest_removal();
+  }
   *model = trainer.TakeModel();
   return Status::Ok();
 }

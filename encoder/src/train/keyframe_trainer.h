@@ -24,6 +24,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,8 +39,10 @@
 #include "train/adam_optimizer.h"
 #include "train/camera_colour.h"
 #include "train/densification.h"
+#include "train/densification_strategy.h"
 #include "train/gaussian_model.h"
 #include "train/learning_rate_schedule.h"
+#include "train/mcmc_densification.h"
 #include "train/progress_bar.h"
 #include "train/training_random.h"
 #include "train/training_views.h"
@@ -80,6 +83,12 @@ struct KeyframeTrainingOptions {
   // keyframe's kept static set): no step, never split or pruned (their clones are free).
   size_t frozen_gaussians = 0;
   GaussianQuantization quantization;
+  // How the set of Gaussians grows and shrinks (densification_strategy.h). MCMC refines over
+  // the same window as adaptive density control (densify_from, densify_until,
+  // densify_interval), grows to GaussianCap, and starts its Gaussians at opacity 0.5 (the
+  // paper's); adaptive density control's settings are `densification` and the resets below.
+  DensificationStrategyKind strategy = DensificationStrategyKind::kAdaptiveDensityControl;
+  McmcSettings mcmc;          // its noise, regularization, growth and min_opacity
   int densify_from = 500;     // densify only after this iteration
   int densify_until = 15000;  // statistics, densification and resets before it (0: none)
   int densify_interval = 100;
@@ -140,6 +149,18 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& options);
 
 using ProgressCallback = std::function<void(const TrainingProgress&)>;
 
+// The model's size and loss at one point of a run (KeyframeTrainer::tenths()).
+struct TrainingTenth {
+  int iteration = 0;
+  size_t gaussians = 0;
+  double loss = 0;  // the progress bar's moving averages
+  double psnr = 0;
+};
+
+// The strategy the options ask for, for a trainer at this scene extent and Gaussian cap.
+StrategyHolder MakeDensificationStrategy(const KeyframeTrainingOptions& options, float scene_extent,
+                                         size_t cap);
+
 class KeyframeTrainer {
  public:
   // Starts training `initial` on `views` (the model's SH degree is the largest trained).
@@ -179,15 +200,19 @@ class KeyframeTrainer {
   const TrainingProgress& progress() const { return progress_; }
   const PhotometricLossValue& last_loss() const { return last_loss_; }
   // Totals over the run.
-  const DensifyCounts& densify_totals() const { return densify_totals_; }
+  const StrategyCounts& densify_totals() const { return strategy_->counts(); }
   size_t importance_pruned() const { return importance_pruned_; }
+  // The model's size and loss at every tenth of options().iterations reached so far.
+  const std::vector<TrainingTenth>& tenths() const { return tenths_; }
+  // The largest share of the model one densification, pruning or relocation event removed.
+  double largest_removal() const { return largest_removal_; }
 
  private:
   int NextView();
   RenderSettings Settings() const;
   Status ForwardBackward(int view);
-  Status Densify();
   Status PruneUnimportant();
+  void RecordTenth();
   bool QuantizationAware() const;
 
   KeyframeTrainingOptions options_;
@@ -196,14 +221,13 @@ class KeyframeTrainer {
   GaussianModel gradients_;
   GaussianModel quantized_;  // what the forward pass renders while quantization-aware
   AdamOptimizer optimizer_;
-  DensificationStats stats_;
+  StrategyHolder strategy_;
   float scene_extent_ = 0;
   int iteration_ = 0;
   int active_sh_degree_ = 0;
   std::optional<TrainingRandom> rng_;
   std::vector<int> view_order_;
   size_t view_cursor_ = 0;
-  int last_reset_ = 0;  // iteration of the last opacity reset (0: none yet)
 
   // Per-iteration buffers, which a copy of the trainer does not need to share.
   template <typename T>
@@ -224,20 +248,45 @@ class KeyframeTrainer {
 
   PhotometricLossValue last_loss_;
   TrainingProgress progress_;
-  DensifyCounts densify_totals_;
   size_t importance_pruned_ = 0;
+  std::vector<TrainingTenth> tenths_;
+  double largest_removal_ = 0;
 };
 
-// The model keyframe training starts from: the capture's points, else photo-consistent points
-// of the views (random ones in the cameras' box with options.random_initialisation).
+// One start InitialKeyframeModel tried, and the points it gave.
+struct KeyframeStart {
+  std::string name;
+  size_t points = 0;
+  bool taken = false;
+};
+
+// The model keyframe training starts from, the first of a chain that gives enough points
+// (kMinStartPoints, or what the cap allows): the capture's points; photo-consistent points of
+// the views seen by 3 views (photo_consistent_points.h); the same seen by 2 views (a rig of
+// 2-4 cameras); points uniform at random in the cameras' box, which always succeeds and keeps
+// the points the sweeps found (the box fills the rest of the count). With
+// options.random_initialisation the chain starts at the random box. `tried` (if not null)
+// receives each start tried.
 Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
-                            const KeyframeTrainingOptions& options, GaussianModel* initial);
+                            const KeyframeTrainingOptions& options, GaussianModel* initial,
+                            std::vector<KeyframeStart>* tried = nullptr);
+
+// A start with fewer points is passed over for the next in the chain.
+constexpr size_t kMinStartPoints = 1000;
 
 // The whole keyframe stage: loads the training views of `frame`, initialises from the
 // capture's points (randomly in the cameras' box when it has none), trains, and returns the
 // model. progress may be null.
+// `report` (if not null) receives the starts tried and the run's tenths.
+struct KeyframeTrainingReport {
+  std::vector<KeyframeStart> starts;
+  std::vector<TrainingTenth> tenths;
+  StrategyCounts counts;
+  double largest_removal = 0;
+};
 Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                     const ProgressCallback& progress, GaussianModel* model);
+                     const ProgressCallback& progress, GaussianModel* model,
+                     KeyframeTrainingReport* report = nullptr);
 
 }  // namespace m4d
 

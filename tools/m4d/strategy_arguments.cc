@@ -1,0 +1,39 @@
+#include "strategy_arguments.h"
+
+#include <cstdio>
+
+namespace m4d {
+
+void AddStrategyOption(CLI::App* command, std::string* name) {
+  command
+      ->add_option("--strategy", *name,
+                   "how keyframe training grows and prunes its Gaussians: 'adc' (the reference "
+                   "3DGS's adaptive density control) or 'mcmc' (3DGS as Markov Chain Monte "
+                   "Carlo: relocation, an exact budget); default: the schedule's (" +
+                       std::string(StrategyName(KeyframeTrainingOptions::Short().strategy)) + ")")
+      ->check(CLI::IsMember({"adc", "mcmc"}));
+}
+
+void ApplyStrategy(const std::string& name, KeyframeTrainingOptions* options) {
+  if (!name.empty()) ParseStrategyName(name, &options->strategy);
+}
+
+void PrintTrainingReport(const KeyframeTrainingReport& report) {
+  for (const KeyframeStart& s : report.starts) {
+    std::printf("%-28s %s: %zu points%s\n", "start", s.name.c_str(), s.points,
+                s.taken ? " (taken)" : ", too few");
+  }
+  std::printf("%-28s %10s %10s %10s %10s\n", "run, per tenth", "iteration", "Gaussians", "loss",
+              "PSNR");
+  for (const TrainingTenth& t : report.tenths) {
+    std::printf("%-28s %10d %10zu %10.4f %10.2f\n", "", t.iteration, t.gaussians, t.loss, t.psnr);
+  }
+  const StrategyCounts& c = report.counts;
+  std::printf(
+      "%-28s cloned %zu, split %zu, pruned %zu, relocated %zu, added %zu; "
+      "largest removal %.1f %%\n",
+      "densification", c.cloned, c.split, c.pruned, c.relocated, c.added,
+      100.0 * report.largest_removal);
+}
+
+}  // namespace m4d
