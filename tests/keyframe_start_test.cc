@@ -35,6 +35,8 @@ KeyframeTrainingOptions Options(DensificationStrategyKind strategy, bool random)
   o.strategy = strategy;
   o.random_initialisation = random;
   o.random_points = 4000;
+  // The starts compared alone: the shell joins the default start, not the random one.
+  o.background_shell_points = 0;
   o.quantization_aware_iterations = 0;
   o.seed = 2;
   o.threads = 2;
@@ -72,6 +74,7 @@ TEST(KeyframeStartTest, EveryStartTrainsWithoutCollapse) {
       const KeyframeTrainingReport& r = run.report;
       ASSERT_FALSE(r.starts.empty()) << what;
       EXPECT_TRUE(r.starts.back().taken) << what;
+      for (size_t i = 0; i + 1 < r.starts.size(); ++i) EXPECT_FALSE(r.starts[i].taken) << what;
       EXPECT_EQ(r.starts.back().name.rfind("random in the cameras' box", 0) == 0,
                 r.starts.size() > 2 || random)
           << what;
@@ -97,15 +100,21 @@ TEST(KeyframeStartTest, AChainOfStartsNeverRefuses) {
   TrainingViews views;
   ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &views).ok());
   KeyframeTrainingOptions options = Options(DensificationStrategyKind::kMcmc, false);
+  options.background_shell_points = 20000;
   GaussianModel initial;
   std::vector<KeyframeStart> tried;
   ASSERT_TRUE(InitialKeyframeModel(capture, views, options, &initial, &tried).ok());
   ASSERT_GE(tried.size(), 2u);
   EXPECT_EQ(tried[0].name, "photo-consistent points, 3 views");
   EXPECT_FALSE(tried[0].taken);  // two views cannot see a point three times
+  // The chain's start, then the background shell, both taken and both in the model.
+  ASSERT_EQ(tried.back().name, "background shell");
+  const KeyframeStart& chain = tried[tried.size() - 2];
+  EXPECT_TRUE(chain.taken);
   EXPECT_TRUE(tried.back().taken);
-  EXPECT_EQ(initial.size(), tried.back().points);
-  EXPECT_GT(initial.size(), 0u);
+  EXPECT_GT(tried.back().points, 0u);
+  EXPECT_LE(4 * tried.back().points, initial.size());  // at most a quarter of the start
+  EXPECT_EQ(initial.size(), chain.points + tried.back().points);
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ struct TrainArguments {
   bool random_init = false;
   std::string strategy;             // empty: the schedule's
   int max_gaussians = 0;            // 0: the schedule's
+  int background_shell = -1;        // points (< 0: the schedule's)
   double gaussians_per_pixel = -1;  // < 0: the schedule's
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
@@ -103,6 +104,9 @@ Status RunTrain(const TrainArguments& args) {
   options.random_initialisation = args.random_init;
   ApplyStrategy(args.strategy, &options);
   if (args.max_gaussians > 0) options.densification.max_gaussians = args.max_gaussians;
+  if (args.background_shell >= 0) {
+    options.background_shell_points = static_cast<size_t>(args.background_shell);
+  }
   if (args.gaussians_per_pixel >= 0) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
   }
@@ -211,6 +215,10 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "at most this many Gaussians (MCMC: exactly this many, if the pixel cap allows; "
                   "default: the schedule's)")
       ->check(CLI::Range(1, 16777216));
+  cmd->add_option("--background-shell", args->background_shell,
+                  "without initial points, this many points over the sphere of the cameras join "
+                  "the start (those no two views see dropped; 0: none)")
+      ->check(CLI::Range(0, 1000000));
   cmd->add_option("--iterations", args->iterations,
                   "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);

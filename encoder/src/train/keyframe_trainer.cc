@@ -10,6 +10,7 @@
 #include "metrics/psnr.h"
 #include "render/splat_renderer.h"
 #include "train/adaptive_density_control.h"
+#include "train/background_shell.h"
 #include "train/gaussian_optimizer.h"
 #include "train/importance_pruning.h"
 #include "train/keyframe_rate_term.h"
@@ -46,8 +47,9 @@ void CopyLeadingRows(const GaussianModel& from, size_t rows, GaussianModel* to) 
         to->values(param).begin());
   }
 }
-constexpr float kShortGaussiansPerPixel = 0.25f;    // keyframe_trainer.h, Short()
-constexpr float kShortMinImportancePixels = 0.05f;  // keyframe_trainer.h, min_importance_pixels
+constexpr float kShortGaussiansPerPixel = 0.25f;       // keyframe_trainer.h, Short()
+constexpr float kShortMinImportancePixels = 0.05f;     // keyframe_trainer.h, min_importance_pixels
+constexpr size_t kShortBackgroundShellPoints = 20000;  // keyframe_trainer.h, Short()
 
 Status OptionError(const std::string& what) {
   return Status(M4D_ERR_INVALID_ARG, "keyframe training options: " + what);
@@ -81,6 +83,7 @@ KeyframeTrainingOptions KeyframeTrainingOptions::Short(int iterations) {
   // the floor near the cameras of a 640x360 capture.
   o.densification.max_screen_radius = 0.0f;
   o.camera_colour_learning_rate = 2e-3f;
+  o.background_shell_points = kShortBackgroundShellPoints;
   return o;
 }
 
@@ -410,25 +413,29 @@ Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& op
   return InitialiseRandom(lo, hi, points, options.seed, init, initial);
 }
 
-}  // namespace
-
-Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
-                            const KeyframeTrainingOptions& options, GaussianModel* initial,
-                            std::vector<KeyframeStart>* tried) {
-  std::vector<KeyframeStart> starts;
-  if (tried == nullptr) tried = &starts;
-  tried->clear();
-  PointInitialisationOptions init;
-  init.threads = options.threads;
-  init.sh_degree = options.sh_degree;
-  // The MCMC paper starts every Gaussian half opaque: relocation needs opaque ones to sample.
-  if (options.strategy == DensificationStrategyKind::kMcmc) init.opacity = 0.5f;
-  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
-  const size_t enough = std::min(kMinStartPoints, std::max<size_t>(start_points / 2, 1));
-  if (capture.initial_points.size() > 0) {
-    tried->push_back({"capture points", capture.initial_points.size(), true});
-    return InitialiseFromPoints(capture.initial_points, init, initial);
+// The shell's points (background_shell.h), at most `limit` of them spread over the sphere.
+Status ShellPoints(const TrainingViews& views, size_t requested, size_t limit, PointCloud* points) {
+  BackgroundShellOptions shell;
+  shell.points = requested;
+  M4D_RETURN_IF_ERROR(BackgroundShellPoints(views, shell, points));
+  if (points->size() <= limit) return Status::Ok();
+  // Every k-th of them, evenly over the sphere (the Fibonacci order runs pole to pole).
+  PointCloud kept;
+  for (size_t i = 0; i < limit; ++i) {
+    const size_t row = i * points->size() / limit;
+    kept.positions.insert(kept.positions.end(), &points->positions[3 * row],
+                          &points->positions[3 * row] + 3);
+    kept.colors.insert(kept.colors.end(), &points->colors[3 * row], &points->colors[3 * row] + 3);
   }
+  *points = std::move(kept);
+  return Status::Ok();
+}
+
+// The chain without the shell.
+Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                     const PointInitialisationOptions& init, size_t start_points,
+                     GaussianModel* initial, std::vector<KeyframeStart>* tried) {
+  const size_t enough = std::min(kMinStartPoints, std::max<size_t>(start_points / 2, 1));
   PointCloud found;  // the most points a sweep found, kept in the random start
   if (!options.random_initialisation) {
     for (int min_views : {3, 2}) {
@@ -453,6 +460,40 @@ Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
   tried->push_back({found.size() > 0 ? "random in the cameras' box, with the points found"
                                      : "random in the cameras' box",
                     initial->size(), true});
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
+                            const KeyframeTrainingOptions& options, GaussianModel* initial,
+                            std::vector<KeyframeStart>* tried) {
+  std::vector<KeyframeStart> starts;
+  if (tried == nullptr) tried = &starts;
+  tried->clear();
+  PointInitialisationOptions init;
+  init.threads = options.threads;
+  init.sh_degree = options.sh_degree;
+  // The MCMC paper starts every Gaussian half opaque: relocation needs opaque ones to sample.
+  if (options.strategy == DensificationStrategyKind::kMcmc) init.opacity = 0.5f;
+  if (capture.initial_points.size() > 0) {
+    tried->push_back({"capture points", capture.initial_points.size(), true});
+    return InitialiseFromPoints(capture.initial_points, init, initial);
+  }
+  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
+  // The shell takes at most a quarter of the start, and comes after the chain's points.
+  PointCloud shell;
+  if (!options.random_initialisation && options.background_shell_points > 0) {
+    M4D_RETURN_IF_ERROR(
+        ShellPoints(views, options.background_shell_points, start_points / 4, &shell));
+  }
+  M4D_RETURN_IF_ERROR(
+      ChainOfStarts(views, options, init, start_points - shell.size(), initial, tried));
+  if (shell.size() == 0) return Status::Ok();
+  tried->push_back({"background shell", shell.size(), true});
+  GaussianModel background;
+  M4D_RETURN_IF_ERROR(InitialiseFromPoints(shell, init, &background));
+  initial->Append(background);
   return Status::Ok();
 }
 

@@ -116,6 +116,11 @@ struct KeyframeTrainingOptions {
   // in the cameras' box (random_initialisation, the reference's way).
   size_t random_points = 100000;
   bool random_initialisation = false;
+  // Without points (and without random_initialisation), this many points spread over the
+  // background shell (background_shell.h) join the start, those no two views see dropped,
+  // at most a quarter of the start (0: none). Short() spreads 20000: on Panoptic basketball
+  // the dome wall then stands where the held-out cameras see it (docs/results/, 2026-11-29).
+  size_t background_shell_points = 0;
   uint64_t seed = 0;
   int threads = 0;  // 0: the hardware's concurrency
 

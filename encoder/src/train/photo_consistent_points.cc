@@ -8,6 +8,7 @@
 #include "common/thread_pool.h"
 #include "train/scene_extent.h"
 #include "train/training_random.h"
+#include "train/view_sampling.h"
 
 namespace m4d {
 namespace {
@@ -46,21 +47,6 @@ bool ClipToBox(const Camera& camera, float u, float v, const PhotoConsistencyOpt
   return *near < *far;
 }
 
-// The pixel's colour if the camera sees the point (in front of its near plane, inside).
-bool Sample(const Camera& camera, const Image& image, const float p[3], float rgb[3]) {
-  const float* r = camera.rotation;
-  const float* t = camera.translation;
-  const float z = r[6] * p[0] + r[7] * p[1] + r[8] * p[2] + t[2];
-  if (!(z > camera.near_plane)) return false;
-  const float x = r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + t[0];
-  const float y = r[3] * p[0] + r[4] * p[1] + r[5] * p[2] + t[1];
-  const float u = camera.fx * x / z + camera.cx, v = camera.fy * y / z + camera.cy;
-  if (!(u >= 0 && v >= 0 && u < camera.width && v < camera.height)) return false;
-  const float* px = image.row(static_cast<int>(v)) + 3 * static_cast<int>(u);
-  std::copy_n(px, 3, rgb);
-  return true;
-}
-
 struct Ray {
   int view;
   float u, v;
@@ -81,7 +67,7 @@ float Score(const TrainingViews& views, int source, const float reference[3], co
   int seen = 0;
   for (int v = 0; v < views.size(); ++v) {
     float rgb[3];
-    if (v == source || !Sample(views.cameras[v], views.images[v], p, rgb)) continue;
+    if (v == source || !SampleView(views.cameras[v], views.images[v], p, rgb)) continue;
     ++seen;
     for (int k = 0; k < 3; ++k) {
       const double d = rgb[k] - reference[k];

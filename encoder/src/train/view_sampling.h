@@ -1,0 +1,30 @@
+// The colour a training view sees at a world point: the starts of keyframe training colour
+// their points from the views this way (occlusion ignored).
+#ifndef M4D_ENCODER_TRAIN_VIEW_SAMPLING_H_
+#define M4D_ENCODER_TRAIN_VIEW_SAMPLING_H_
+
+#include <algorithm>
+
+#include "image/image.h"
+#include "render/camera.h"
+
+namespace m4d {
+
+// The pixel's colour if the camera sees the point (in front of its near plane, inside).
+inline bool SampleView(const Camera& camera, const Image& image, const float p[3], float rgb[3]) {
+  const float* r = camera.rotation;
+  const float* t = camera.translation;
+  const float z = r[6] * p[0] + r[7] * p[1] + r[8] * p[2] + t[2];
+  if (!(z > camera.near_plane)) return false;
+  const float x = r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + t[0];
+  const float y = r[3] * p[0] + r[4] * p[1] + r[5] * p[2] + t[1];
+  const float u = camera.fx * x / z + camera.cx, v = camera.fy * y / z + camera.cy;
+  if (!(u >= 0 && v >= 0 && u < camera.width && v < camera.height)) return false;
+  const float* px = image.row(static_cast<int>(v)) + 3 * static_cast<int>(u);
+  std::copy_n(px, 3, rgb);
+  return true;
+}
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_TRAIN_VIEW_SAMPLING_H_
