@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "synthetic_scene/synthetic_capture.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 
 namespace m4d {

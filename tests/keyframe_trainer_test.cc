@@ -20,6 +20,7 @@
 #include "splat_test_scenes.h"
 #include "train/gaussian_model.h"
 #include "train/gaussian_optimizer.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"

@@ -16,6 +16,7 @@
 #include "render/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "stream_test_util.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 
 namespace m4d {

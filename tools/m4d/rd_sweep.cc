@@ -13,6 +13,7 @@
 #include "ply/gaussian_ply.h"
 #include "prune_share_arguments.h"
 #include "train/gaussian_model.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
 

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 
 namespace m4d {

@@ -17,6 +17,7 @@
 #include "prune_share_arguments.h"
 #include "rate_weight_arguments.h"
 #include "strategy_arguments.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 #include "train/progress_bar.h"
 #include "train/view_evaluation.h"

@@ -24,6 +24,7 @@
 #include "pipeline/retraining_growth.h"
 #include "pipeline/training_psnr_meter.h"
 #include "train/gaussian_model.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 #include "train/scene_extent.h"
 #include "train/training_views.h"

@@ -57,7 +57,7 @@ Status BackgroundShellPoints(const TrainingViews& views, const BackgroundShellOp
   }
   const BackgroundShell shell = CameraShell(views, options.radius_scale);
   if (!(shell.radius > 0.0f)) return Status::Ok();
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));  // radians
   const double n = static_cast<double>(options.points);
   for (size_t i = 0; i < options.points; ++i) {
     const double y = 1.0 - 2.0 * (static_cast<double>(i) + 0.5) / n;

@@ -258,41 +258,6 @@ class KeyframeTrainer {
   double largest_removal_ = 0;
 };
 
-// One start InitialKeyframeModel tried, and the points it gave.
-struct KeyframeStart {
-  std::string name;
-  size_t points = 0;
-  bool taken = false;
-};
-
-// The model keyframe training starts from, the first of a chain that gives enough points
-// (kMinStartPoints, or what the cap allows): the capture's points; photo-consistent points of
-// the views seen by 3 views (photo_consistent_points.h); the same seen by 2 views (a rig of
-// 2-4 cameras); points uniform at random in the cameras' box, which always succeeds and keeps
-// the points the sweeps found (the box fills the rest of the count). With
-// options.random_initialisation the chain starts at the random box. `tried` (if not null)
-// receives each start tried.
-Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
-                            const KeyframeTrainingOptions& options, GaussianModel* initial,
-                            std::vector<KeyframeStart>* tried = nullptr);
-
-// A start with fewer points is passed over for the next in the chain.
-constexpr size_t kMinStartPoints = 1000;
-
-// The whole keyframe stage: loads the training views of `frame`, initialises from the
-// capture's points (randomly in the cameras' box when it has none), trains, and returns the
-// model. progress may be null.
-// `report` (if not null) receives the starts tried and the run's tenths.
-struct KeyframeTrainingReport {
-  std::vector<KeyframeStart> starts;
-  std::vector<TrainingTenth> tenths;
-  StrategyCounts counts;
-  double largest_removal = 0;
-};
-Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                     const ProgressCallback& progress, GaussianModel* model,
-                     KeyframeTrainingReport* report = nullptr);
-
 }  // namespace m4d
 
 #endif  // M4D_ENCODER_TRAIN_KEYFRAME_TRAINER_H_

@@ -24,6 +24,7 @@
 #include "common/status.h"
 #include "render/camera.h"
 #include "train/gaussian_model.h"
+#include "train/keyframe_stage.h"
 #include "train/keyframe_trainer.h"
 #include "train/selection_branch.h"
 #include "train/training_views.h"

@@ -1,0 +1,143 @@
+#include "train/keyframe_stage.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "train/background_shell.h"
+#include "train/photo_consistent_points.h"
+#include "train/point_initialisation.h"
+#include "train/scene_extent.h"
+
+namespace m4d {
+namespace {
+
+// Photo-consistent points seen by at least `min_views` views.
+Status PhotoConsistentStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                            size_t points, int min_views, PointCloud* cloud) {
+  PhotoConsistencyOptions photo;
+  photo.points = points;
+  photo.min_views = min_views;
+  photo.seed = options.seed;
+  photo.threads = options.threads;
+  return PhotoConsistentPoints(views, photo, cloud);
+}
+
+// Points uniform in the cameras' box.
+Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                   size_t points, const PointInitialisationOptions& init, GaussianModel* initial) {
+  const SceneBounds bounds = CameraSceneBounds(views.cameras);
+  float lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = bounds.centre[a] - bounds.extent;
+    hi[a] = bounds.centre[a] + bounds.extent;
+  }
+  return InitialiseRandom(lo, hi, points, options.seed, init, initial);
+}
+
+// The shell's points (background_shell.h), at most `limit` of them spread over the sphere.
+Status ShellPoints(const TrainingViews& views, size_t requested, size_t limit, PointCloud* points) {
+  BackgroundShellOptions shell;
+  shell.points = requested;
+  M4D_RETURN_IF_ERROR(BackgroundShellPoints(views, shell, points));
+  if (points->size() <= limit) return Status::Ok();
+  // Every k-th of them, evenly over the sphere (the Fibonacci order runs pole to pole).
+  PointCloud kept;
+  for (size_t i = 0; i < limit; ++i) {
+    const size_t row = i * points->size() / limit;
+    kept.positions.insert(kept.positions.end(), &points->positions[3 * row],
+                          &points->positions[3 * row] + 3);
+    kept.colors.insert(kept.colors.end(), &points->colors[3 * row], &points->colors[3 * row] + 3);
+  }
+  *points = std::move(kept);
+  return Status::Ok();
+}
+
+// The chain without the shell.
+Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& options,
+                     const PointInitialisationOptions& init, size_t start_points,
+                     GaussianModel* initial, std::vector<KeyframeStart>* tried) {
+  const size_t enough = std::min(kMinStartPoints, std::max<size_t>(start_points / 2, 1));
+  PointCloud found;  // the most points a sweep found, kept in the random start
+  if (!options.random_initialisation) {
+    for (int min_views : {3, 2}) {
+      PointCloud points;
+      M4D_RETURN_IF_ERROR(PhotoConsistentStart(views, options, start_points, min_views, &points));
+      const bool taken = points.size() >= enough;
+      tried->push_back({"photo-consistent points, " + std::to_string(min_views) + " views",
+                        points.size(), taken});
+      if (taken) return InitialiseFromPoints(points, init, initial);
+      if (points.size() > found.size()) found = std::move(points);
+    }
+  }
+  GaussianModel random;
+  GaussianModel* box = found.size() > 0 ? &random : initial;
+  M4D_RETURN_IF_ERROR(RandomStart(views, options, start_points - found.size(), init, box));
+  if (found.size() > 0) {
+    GaussianModel swept;
+    M4D_RETURN_IF_ERROR(InitialiseFromPoints(found, init, &swept));
+    swept.Append(random);
+    *initial = std::move(swept);
+  }
+  tried->push_back({found.size() > 0 ? "random in the cameras' box, with the points found"
+                                     : "random in the cameras' box",
+                    initial->size(), true});
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
+                            const KeyframeTrainingOptions& options, GaussianModel* initial,
+                            std::vector<KeyframeStart>* tried) {
+  std::vector<KeyframeStart> starts;
+  if (tried == nullptr) tried = &starts;
+  tried->clear();
+  PointInitialisationOptions init;
+  init.threads = options.threads;
+  init.sh_degree = options.sh_degree;
+  // The MCMC paper starts every Gaussian half opaque: relocation needs opaque ones to sample.
+  if (options.strategy == DensificationStrategyKind::kMcmc) init.opacity = 0.5f;
+  if (capture.initial_points.size() > 0) {
+    tried->push_back({"capture points", capture.initial_points.size(), true});
+    return InitialiseFromPoints(capture.initial_points, init, initial);
+  }
+  const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
+  // The shell takes at most a quarter of the start, and comes after the chain's points.
+  PointCloud shell;
+  if (!options.random_initialisation && options.background_shell_points > 0) {
+    M4D_RETURN_IF_ERROR(
+        ShellPoints(views, options.background_shell_points, start_points / 4, &shell));
+  }
+  M4D_RETURN_IF_ERROR(
+      ChainOfStarts(views, options, init, start_points - shell.size(), initial, tried));
+  if (shell.size() == 0) return Status::Ok();
+  tried->push_back({"background shell", shell.size(), true});
+  GaussianModel background;
+  M4D_RETURN_IF_ERROR(InitialiseFromPoints(shell, init, &background));
+  initial->Append(background);
+  return Status::Ok();
+}
+
+Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
+                     const ProgressCallback& progress, GaussianModel* model,
+                     KeyframeTrainingReport* report) {
+  M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  TrainingViews views;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
+  GaussianModel initial;
+  std::vector<KeyframeStart> starts;
+  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial, &starts));
+  KeyframeTrainer trainer;
+  M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
+  M4D_RETURN_IF_ERROR(trainer.Train(progress));
+  if (report != nullptr) {
+    report->starts = std::move(starts);
+    report->tenths = trainer.tenths();
+    report->counts = trainer.densify_totals();
+    report->largest_removal = trainer.largest_removal();
+  }
+  *model = trainer.TakeModel();
+  return Status::Ok();
+}
+
+}  // namespace m4d
