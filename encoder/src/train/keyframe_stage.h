@@ -35,16 +35,16 @@ Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
 // A start with fewer points is passed over for the next in the chain.
 constexpr size_t kMinStartPoints = 1000;
 
-// The whole keyframe stage: loads the training views of `frame`, initialises from the
-// capture's points (randomly in the cameras' box when it has none), trains, and returns the
-// model. progress may be null.
-// `report` (if not null) receives the starts tried and the run's tenths.
+// What TrainKeyframe reports: the starts tried, the run's tenths, the strategy's counts.
 struct KeyframeTrainingReport {
   std::vector<KeyframeStart> starts;
   std::vector<TrainingTenth> tenths;
   StrategyCounts counts;
   double largest_removal = 0;
 };
+
+// The whole keyframe stage: loads the training views of `frame`, starts from
+// InitialKeyframeModel, trains, and returns the model. progress and report may be null.
 Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
                      const ProgressCallback& progress, GaussianModel* model,
                      KeyframeTrainingReport* report = nullptr);

@@ -2,15 +2,17 @@
 // reference implementation runs it): each iteration renders one training view (views in a
 // seeded random order, reshuffled every pass), takes the loss (1 - lambda) L1 + lambda
 // (1 - SSIM) and its gradient through the rasterizer, and steps Adam, with the position
-// learning rate decaying, the active SH degree rising, and adaptive density control
-// (densification.h) for the first part of the run.
+// learning rate decaying, the active SH degree rising, and a densification strategy
+// (densification_strategy.h: the reference's adaptive density control, or MCMC) for the first
+// part of the run.
 //
 // Order within iteration i (1-based), as the reference: learning rates for i; SH degree up
-// when i is a multiple of sh_degree_interval; render, loss, backward; while i < densify_until,
-// gather statistics, densify when i > densify_from and i is a multiple of densify_interval,
-// reset opacities when i is a multiple of opacity_reset_interval; then the Adam step, except
-// after densification (the reference's densified tensors lose that iteration's gradients)
-// and for the opacities just reset.
+// when i is a multiple of sh_degree_interval; render, loss, backward; the strategy's
+// AfterBackward (adaptive density control, while i < densify_until: gather statistics,
+// densify when i > densify_from and i is a multiple of densify_interval, reset opacities
+// when i is a multiple of opacity_reset_interval); then the Adam step, except after the
+// model's rows changed (the reference's densified tensors lose that iteration's gradients)
+// and for the opacities just reset; then the strategy's AfterStep.
 //
 // Same options and seed give the same model bit for bit, whatever the thread count.
 //
