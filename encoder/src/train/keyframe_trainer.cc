@@ -264,11 +264,15 @@ Status KeyframeTrainer::PruneUnimportant() {
       KeepImportant(weights, options_.importance_prune_share, options_.min_importance_pixels,
                     options_.densification.max_prune_fraction);
   std::fill(keep.begin(), keep.begin() + static_cast<std::ptrdiff_t>(options_.frozen_gaussians), 1);
+  // What no training view sees is removed without bound (it is harmless to them all) and
+  // is not counted as lost.
+  size_t seen_removed = 0;
+  for (size_t i = 0; i < keep.size(); ++i) seen_removed += !keep[i] && weights[i] > 0.0;
   const size_t before = model_.size();
   KeepGaussians(keep, &model_, &optimizer_, nullptr);
   importance_pruned_ += before - model_.size();
   largest_removal_ =
-      std::max(largest_removal_, static_cast<double>(before - model_.size()) /
+      std::max(largest_removal_, static_cast<double>(seen_removed) /
                                      static_cast<double>(std::max<size_t>(before, 1)));
   return Status::Ok();
 }

@@ -211,7 +211,8 @@ class KeyframeTrainer {
   size_t importance_pruned() const { return importance_pruned_; }
   // The model's size and loss at every tenth of options().iterations reached so far.
   const std::vector<TrainingTenth>& tenths() const { return tenths_; }
-  // The largest share of the model one densification, pruning or relocation event removed.
+  // The largest share of the model one densification, pruning or relocation event removed,
+  // not counting Gaussians that no training view sees.
   double largest_removal() const { return largest_removal_; }
 
  private:
