@@ -28,6 +28,7 @@
 #include "train/prune_share_selection.h"
 #include "train/rate_weight_selection.h"
 #include "train/scene_extent.h"
+#include "train/smoothing_filter_3d.h"
 
 namespace m4d {
 namespace {
@@ -411,17 +412,27 @@ double ViewLoss(const GaussianModel& model, const TrainingViews& views) {
   return value.loss;
 }
 
+// Camera 2's view alone, and the scene's points as the model: for tests of single steps.
+void OneViewStart(const Scene& scene, TrainingViews* view, GaussianModel* initial) {
+  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, {2}, view).ok());
+  ASSERT_TRUE(
+      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), initial)
+          .ok());
+}
+
+KeyframeTrainingOptions TwoStepOptions() {
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 2;
+  options.scene_extent = 2.0f;  // one camera has none of its own
+  return options;
+}
+
 TEST(KeyframeTrainerTest, QuantizationAwareIterationsRenderTheCodedModel) {
   const Scene scene = MakeScene();
   TrainingViews view;
-  ASSERT_TRUE(LoadTrainingViews(scene.capture, 0, {2}, &view).ok());
   GaussianModel initial;
-  ASSERT_TRUE(
-      InitialiseFromPoints(scene.capture.initial_points, PointInitialisationOptions(), &initial)
-          .ok());
-  KeyframeTrainingOptions options = TestOptions();
-  options.iterations = 2;
-  options.scene_extent = 2.0f;             // one camera has none of its own
+  OneViewStart(scene, &view, &initial);
+  KeyframeTrainingOptions options = TwoStepOptions();
   options.quantization.position_bits = 6;  // coarse enough to change the loss
   options.quantization.log_scale_bits = 3;
   GaussianSet set;
@@ -453,6 +464,40 @@ TEST(KeyframeTrainerTest, QuantizationAwareIterationsRenderTheCodedModel) {
   options.quantization_aware_iterations = -1;
   KeyframeTrainer trainer;
   EXPECT_EQ(trainer.Init(options, view, initial).code(), M4D_ERR_INVALID_ARG);
+}
+
+// With the 3D smoothing filter, training renders the filtered model, and what leaves the last
+// iteration is baked: no Gaussian is finer than its filter.
+TEST(KeyframeTrainerTest, SmoothingFilterIsRenderedThenBaked) {
+  const Scene scene = MakeScene();
+  TrainingViews view;
+  GaussianModel initial;
+  OneViewStart(scene, &view, &initial);
+  KeyframeTrainingOptions options = TwoStepOptions();
+  options.smoothing_filter_variance = 100.0f;  // ten pixels, wider than many Gaussians
+  SmoothingFilter3d filter;
+  filter.Fit(initial, view.cameras, options.smoothing_filter_variance);
+  size_t finer = 0;
+  for (size_t i = 0; i < initial.size(); ++i) {
+    finer += std::exp(initial.log_scales[3 * i]) < filter.sigma()[i] ? 1 : 0;
+  }
+  ASSERT_GT(finer, initial.size() / 10);
+  filter.Apply(initial);
+  GaussianModel filtered = initial;
+  filter.Bake(&filtered);
+  ASSERT_GT(std::fabs(ViewLoss(filtered, view) - ViewLoss(initial, view)), 1e-4);
+  KeyframeTrainer trainer;
+  ASSERT_TRUE(trainer.Init(options, view, initial).ok());
+  ASSERT_TRUE(trainer.Step().ok());
+  EXPECT_NEAR(trainer.last_loss().loss, ViewLoss(filtered, view), 1e-9);
+  ASSERT_TRUE(trainer.Step().ok());
+  SmoothingFilter3d final_filter;
+  final_filter.Fit(trainer.model(), view.cameras, options.smoothing_filter_variance);
+  for (size_t i = 0; i < trainer.model().size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_GE(std::exp(trainer.model().log_scales[3 * i + a]), 0.999f * final_filter.sigma()[i]);
+    }
+  }
 }
 
 TEST(KeyframeTrainerTest, TrainKeyframeWithoutPoints) {
@@ -518,11 +563,13 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsLieOnTheContent) {
     lo[a] = bounds.centre[a] - bounds.extent;
     hi[a] = bounds.centre[a] + bounds.extent;
   }
-  GaussianModel random;
-  ASSERT_TRUE(
-      InitialiseRandom(lo, hi, points.size(), 4, PointInitialisationOptions(), &random).ok());
+  std::mt19937 engine(4);
+  std::vector<float> random(points.positions.size());
+  for (size_t i = 0; i < random.size(); ++i) {
+    random[i] = std::uniform_real_distribution<float>(lo[i % 3], hi[i % 3])(engine);
+  }
   const double photo = ShareNearContent(scene, points.positions);
-  const double box = ShareNearContent(scene, random.positions);
+  const double box = ShareNearContent(scene, random);
   EXPECT_GT(photo, 3 * box) << photo << " vs " << box;
   // Seeded: the same points again.
   PointCloud again;

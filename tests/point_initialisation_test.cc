@@ -53,25 +53,6 @@ TEST(PointInitialisationTest, DuplicatesGetTheMinimumDistance) {
   EXPECT_FLOAT_EQ(model.log_scales[0], 0.5f * std::log(1e-7f));
 }
 
-TEST(PointInitialisationTest, RandomInitialisationStaysInTheBox) {
-  const float lo[3] = {-1, 0, 2}, hi[3] = {1, 0.5f, 3};
-  GaussianModel a, b;
-  PointInitialisationOptions options;
-  options.sh_degree = 1;
-  ASSERT_TRUE(InitialiseRandom(lo, hi, 500, 7, options, &a).ok());
-  ASSERT_TRUE(InitialiseRandom(lo, hi, 500, 7, options, &b).ok());
-  ASSERT_EQ(a.size(), 500u);
-  EXPECT_EQ(a.sh.size(), 500u * 12);
-  EXPECT_EQ(a.positions, b.positions);  // seeded
-  for (size_t i = 0; i < 500; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      EXPECT_GE(a.positions[3 * i + d], lo[d]);
-      EXPECT_LE(a.positions[3 * i + d], hi[d]);
-    }
-    EXPECT_TRUE(std::isfinite(a.log_scales[3 * i]));
-  }
-}
-
 TEST(PointInitialisationTest, BadInputIsRejected) {
   GaussianModel model;
   PointCloud points;
@@ -87,9 +68,6 @@ TEST(PointInitialisationTest, BadInputIsRejected) {
   bad.opacity = 1.0f;
   points.positions[4] = 1;
   EXPECT_EQ(InitialiseFromPoints(points, bad, &model).code(), M4D_ERR_INVALID_ARG);
-  const float lo[3] = {0, 0, 0}, hi[3] = {1, -1, 1};
-  EXPECT_EQ(InitialiseRandom(lo, hi, 10, 1, PointInitialisationOptions(), &model).code(),
-            M4D_ERR_INVALID_ARG);
 }
 
 TEST(SceneExtentTest, ReferenceRadiusOfCameraCentres) {

@@ -98,8 +98,8 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->check(CLI::Range(0.0, 1e6));
   AddStrategyOption(cmd, &a->strategy);
   cmd->add_flag("--random-init", a->random_init,
-                "without initial points, start the first keyframe uniform at random in the "
-                "cameras' box instead of from photo-consistent points");
+                "without initial points, start the first keyframe at random in the part of "
+                "the cameras' box two views see instead of from photo-consistent points");
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -11,10 +11,12 @@
 #include "command_status.h"
 #include "common/byte_writer.h"
 #include "image/png_io.h"
+#include "io/atomic_file.h"
 #include "layers/gaussian_set_writer.h"
 #include "pipeline/rate_points.h"
 #include "ply/gaussian_ply.h"
 #include "prune_share_arguments.h"
+#include "quality_curve.h"
 #include "rate_weight_arguments.h"
 #include "strategy_arguments.h"
 #include "train/keyframe_stage.h"
@@ -39,6 +41,7 @@ struct TrainArguments {
   int max_gaussians = 0;            // 0: the schedule's
   int background_shell = -1;        // points (< 0: the schedule's)
   double gaussians_per_pixel = -1;  // < 0: the schedule's
+  double smoothing_filter = -1;     // < 0: the schedule's
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
   int quantization_aware = -1;     // iterations (< 0: the schedule's)
@@ -47,7 +50,29 @@ struct TrainArguments {
   std::vector<int> keyframe_bits;  // 6 bit depths (empty: the rate point's)
   std::string ply = "out/keyframe.ply";
   std::string render = "out/keyframe_test_view.png";
+  std::string curve;  // CSV of held-out quality over time (empty: none)
+  std::vector<double> curve_minutes = {1, 2, 5, 10, 15, 20};
 };
+
+// The curve's clock starts with the command, before any automatic choice, and it needs the
+// capture's test cameras.
+Status StartQualityCurve(const TrainArguments& args, const Capture& capture,
+                         std::unique_ptr<QualityCurve>* curve) {
+  if (args.curve.empty()) return Status::Ok();
+  if (capture.test_cameras.empty()) {
+    return Status(M4D_ERR_INVALID_ARG, "--curve: the capture has no held-out camera");
+  }
+  M4D_RETURN_IF_ERROR(CheckOutputPath(args.curve));
+  TrainingViews test;
+  M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, args.frame, capture.test_cameras, &test));
+  RenderSettings settings;
+  settings.threads = args.threads;
+  settings.sh_degree = args.sh_degree;
+  std::vector<double> marks = args.curve_minutes;
+  std::sort(marks.begin(), marks.end());
+  *curve = std::make_unique<QualityCurve>(std::move(marks), std::move(test), settings);
+  return Status::Ok();
+}
 
 // The keyframe bits and rate term the model is trained for: the rate point's, or the arguments'.
 Status TrainingRate(const TrainArguments& args, KeyframeTrainingOptions* options) {
@@ -96,6 +121,8 @@ Status RunTrain(const TrainArguments& args) {
                                            std::to_string(capture.frame_count) + " frames");
   }
   M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, args.frame, 1));
+  std::unique_ptr<QualityCurve> curve;
+  M4D_RETURN_IF_ERROR(StartQualityCurve(args, capture, &curve));
   KeyframeTrainingOptions options = KeyframeTrainingOptions::Short();
   if (args.reference_schedule) options = KeyframeTrainingOptions::Reference();
   if (args.iterations > 0 && !args.reference_schedule) {
@@ -110,6 +137,9 @@ Status RunTrain(const TrainArguments& args) {
   }
   if (args.gaussians_per_pixel >= 0) {
     options.max_gaussians_per_pixel = static_cast<float>(args.gaussians_per_pixel);
+  }
+  if (args.smoothing_filter >= 0) {
+    options.smoothing_filter_variance = static_cast<float>(args.smoothing_filter);
   }
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
@@ -128,10 +158,15 @@ Status RunTrain(const TrainArguments& args) {
   ProgressBar bar;
   GaussianModel model;
   KeyframeTrainingReport report;
+  TrainerObserver observe = nullptr;
+  if (curve) {
+    observe = [&](KeyframeTrainer* trainer) { return curve->Observe(trainer); };
+  }
   M4D_RETURN_IF_ERROR(TrainKeyframe(
       capture, args.frame, options, [&](const TrainingProgress& p) { bar.Update(p); }, &model,
-      &report));
+      &report, observe));
   bar.Finish();
+  if (curve) M4D_RETURN_IF_ERROR(curve->Finish(model, options.iterations));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -167,6 +202,11 @@ Status RunTrain(const TrainArguments& args) {
       std::printf("%-28s %s (ground truth | render)\n", "held-out view", args.render.c_str());
     }
   }
+  if (curve) {
+    curve->Print();
+    M4D_RETURN_IF_ERROR(curve->WriteCsv(args.curve));
+    std::printf("%-28s %s\n", "quality over time (CSV)", args.curve.c_str());
+  }
   if (!args.ply.empty()) {
     GaussianSet set;
     M4D_RETURN_IF_ERROR(ModelToGaussianSet(model, model.sh_degree, &set));
@@ -188,6 +228,10 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "at most this many Gaussians per pixel of the training views (0: no such "
                   "cap; default 0.25, none with --reference-schedule)")
       ->check(CLI::Range(0.0, 64.0));
+  cmd->add_option("--smoothing-filter", args->smoothing_filter,
+                  "variance of Mip-Splatting's 3D smoothing filter in squared pixels of the "
+                  "finest training camera (0: none; Mip-Splatting's 0.2), baked into the model")
+      ->check(CLI::Range(0.0, 100.0));
   AddPruneShareOptions(cmd, "keyframe training", &args->prune);
   cmd->add_option("--prune-below", args->prune_below,
                   "when densification ends, remove the Gaussians whose blending weight summed "
@@ -209,8 +253,8 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       ->delimiter(',')
       ->check(CLI::Range(1, 24));
   cmd->add_flag("--random-init", args->random_init,
-                "without initial points, start uniform at random in the cameras' box (the "
-                "reference's way) instead of from photo-consistent points");
+                "without initial points, start at random in the part of the cameras' box two "
+                "views see (coloured from them) instead of from photo-consistent points");
   AddStrategyOption(cmd, &args->strategy);
   cmd->add_option("--max-gaussians", args->max_gaussians,
                   "at most this many Gaussians (MCMC: exactly this many, if the pixel cap allows; "
@@ -233,6 +277,13 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
   cmd->add_option("--ply", args->ply, "write the model here ('' to skip)")->capture_default_str();
   cmd->add_option("--render", args->render, "held-out view beside its ground truth, PNG")
+      ->capture_default_str();
+  cmd->add_option("--curve", args->curve,
+                  "write the held-out cameras' PSNR as the command's minutes pass (CSV: "
+                  "minutes, iteration, Gaussians, PSNR; the clock stops while it evaluates)");
+  cmd->add_option("--curve-minutes", args->curve_minutes, "the minutes --curve evaluates at")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   cmd->callback([args, exit_code]() { *exit_code = ReportStatus("train", RunTrain(*args)); });
 }

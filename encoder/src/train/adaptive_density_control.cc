@@ -27,6 +27,8 @@ Status AdaptiveDensityControl::AfterBackward(const StrategyStep& step, const Str
     counts_.split += c.split;
     counts_.pruned += c.pruned;
     outcome->rows_changed = true;
+    // The prune bound holds for the model grown by this step's clones and splits.
+    outcome->before = state.model->size() + c.split + c.pruned;
     outcome->removed = c.pruned;
   }
   if (s.opacity_reset_interval > 0 && it % s.opacity_reset_interval == 0) {

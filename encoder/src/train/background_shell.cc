@@ -66,19 +66,10 @@ Status BackgroundShellPoints(const TrainingViews& views, const BackgroundShellOp
     const double dir[3] = {ring * std::cos(phi), y, ring * std::sin(phi)};
     float p[3];
     for (int k = 0; k < 3; ++k) p[k] = shell.centre[k] + static_cast<float>(shell.radius * dir[k]);
-    double colour[3] = {0, 0, 0};
-    int seen = 0;
-    for (int v = 0; v < views.size(); ++v) {
-      float rgb[3];
-      if (!SampleView(views.cameras[v], views.images[v], p, rgb)) continue;
-      ++seen;
-      for (int k = 0; k < 3; ++k) colour[k] += rgb[k];
-    }
-    if (seen < options.min_views) continue;
-    for (int k = 0; k < 3; ++k) {
-      points->positions.push_back(p[k]);
-      points->colors.push_back(static_cast<float>(colour[k] / seen));
-    }
+    float rgb[3];
+    if (!MeanViewColour(views, p, options.min_views, rgb)) continue;
+    points->positions.insert(points->positions.end(), p, p + 3);
+    points->colors.insert(points->colors.end(), rgb, rgb + 3);
   }
   return Status::Ok();
 }

@@ -48,7 +48,7 @@ struct StrategyOutcome {
   bool rows_changed = false;  // the trainer skips this iteration's Adam step
   GaussianParameter skip_step = kGaussianParameterCount;  // or skips this parameter's step
   size_t removed = 0;                                     // Gaussians removed by this event
-  size_t before = 0;                                      // the model's size before it
+  size_t before = 0;  // the model's size it removed from (ADC: after its clones and splits)
 };
 
 // Totals over a run.

@@ -6,6 +6,7 @@
 #include "train/background_shell.h"
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
+#include "train/random_start.h"
 #include "train/scene_extent.h"
 
 namespace m4d {
@@ -22,7 +23,7 @@ Status PhotoConsistentStart(const TrainingViews& views, const KeyframeTrainingOp
   return PhotoConsistentPoints(views, photo, cloud);
 }
 
-// Points uniform in the cameras' box.
+// Points uniform in the part of the cameras' box the views see (random_start.h).
 Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
                    size_t points, const PointInitialisationOptions& init, GaussianModel* initial) {
   const SceneBounds bounds = CameraSceneBounds(views.cameras);
@@ -31,7 +32,12 @@ Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& op
     lo[a] = bounds.centre[a] - bounds.extent;
     hi[a] = bounds.centre[a] + bounds.extent;
   }
-  return InitialiseRandom(lo, hi, points, options.seed, init, initial);
+  RandomStartOptions random;
+  random.points = points;
+  random.seed = options.seed;
+  PointCloud cloud;
+  M4D_RETURN_IF_ERROR(ViewedRandomPoints(views, lo, hi, random, &cloud));
+  return InitialiseFromPoints(cloud, init, initial);
 }
 
 // The shell's points (background_shell.h), at most `limit` of them spread over the sphere.
@@ -104,7 +110,7 @@ Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
   const size_t start_points = std::min(options.random_points, GaussianCap(options, views));
   // The shell takes at most a quarter of the start, and comes after the chain's points.
   PointCloud shell;
-  if (!options.random_initialisation && options.background_shell_points > 0) {
+  if (options.background_shell_points > 0) {
     M4D_RETURN_IF_ERROR(
         ShellPoints(views, options.background_shell_points, start_points / 4, &shell));
   }
@@ -120,7 +126,7 @@ Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
 
 Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
                      const ProgressCallback& progress, GaussianModel* model,
-                     KeyframeTrainingReport* report) {
+                     KeyframeTrainingReport* report, const TrainerObserver& observe) {
   M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
   TrainingViews views;
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), &views));
@@ -129,7 +135,14 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
   M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial, &starts));
   KeyframeTrainer trainer;
   M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
-  M4D_RETURN_IF_ERROR(trainer.Train(progress));
+  if (observe) {
+    while (trainer.iteration() < options.iterations) {
+      M4D_RETURN_IF_ERROR(trainer.TrainUntil(trainer.iteration() + kObserveEvery, progress));
+      M4D_RETURN_IF_ERROR(observe(&trainer));
+    }
+  } else {
+    M4D_RETURN_IF_ERROR(trainer.Train(progress));
+  }
   if (report != nullptr) {
     report->starts = std::move(starts);
     report->tenths = trainer.tenths();

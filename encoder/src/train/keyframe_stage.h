@@ -5,6 +5,7 @@
 #define M4D_ENCODER_TRAIN_KEYFRAME_STAGE_H_
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,9 @@ struct KeyframeStart {
 // The model keyframe training starts from, the first of a chain that gives enough points
 // (kMinStartPoints, or what the cap allows): the capture's points; photo-consistent points of
 // the views seen by 3 views (photo_consistent_points.h); the same seen by 2 views (a rig of
-// 2-4 cameras); points uniform at random in the cameras' box, which always succeeds and keeps
-// the points the sweeps found (the box fills the rest of the count). With
+// 2-4 cameras); points at random in the cameras' box where two views look (random_start.h),
+// which always succeeds and keeps the points the sweeps found (the box fills the rest of the
+// count). Then the background shell, whatever the start. With
 // options.random_initialisation the chain starts at the random box. `tried` (if not null)
 // receives each start tried.
 Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
@@ -43,11 +45,18 @@ struct KeyframeTrainingReport {
   double largest_removal = 0;
 };
 
+// Looks at the trainer between iterations (a quality-over-time curve); an error stops the run.
+using TrainerObserver = std::function<Status(KeyframeTrainer*)>;
+
 // The whole keyframe stage: loads the training views of `frame`, starts from
-// InitialKeyframeModel, trains, and returns the model. progress and report may be null.
+// InitialKeyframeModel, trains, and returns the model. progress, report and observe may be
+// null; observe is called every kObserveEvery iterations and after the last.
 Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
                      const ProgressCallback& progress, GaussianModel* model,
-                     KeyframeTrainingReport* report = nullptr);
+                     KeyframeTrainingReport* report = nullptr,
+                     const TrainerObserver& observe = nullptr);
+
+constexpr int kObserveEvery = 10;
 
 }  // namespace m4d
 

@@ -18,7 +18,8 @@
 namespace m4d {
 namespace {
 
-constexpr double kEmaWeight = 0.4;  // of the newest value, as the reference's progress bar
+constexpr double kEmaWeight = 0.4;           // of the newest value, as the reference's progress bar
+constexpr int kSmoothingRefitInterval = 10;  // iterations between refits of the 3D filter
 
 // Zeroes every parameter of the first `rows` Gaussians (the frozen ones' gradients, so that
 // Adam, whose moments then stay zero, never moves them).
@@ -103,6 +104,9 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (o.start_sh_degree < 0 || o.start_sh_degree > 3) return OptionError("start SH degree");
   if (o.sh_degree < 0 || o.sh_degree > 3) return OptionError("SH degree");
   if (!(o.ssim_weight >= 0.0 && o.ssim_weight <= 1.0)) return OptionError("SSIM weight");
+  if (!(o.smoothing_filter_variance >= 0.0f && o.smoothing_filter_variance <= 100.0f)) {
+    return Status(M4D_ERR_INVALID_ARG, "smoothing_filter_variance must be in [0, 100]");
+  }
   if (!(o.camera_colour_learning_rate >= 0.0f && o.camera_colour_learning_rate <= 1.0f)) {
     return OptionError("camera colour learning rate");
   }
@@ -187,6 +191,8 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   pool_ = std::make_shared<ThreadPool>(options.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
   camera_colour_.Init(views_.size(), options.camera_colour_learning_rate);
+  filter_ = SmoothingFilter3d();
+  filter_baked_ = false;
   progress_ = TrainingProgress();
   progress_.iterations = options.iterations;
   progress_.gaussians = model_.size();
@@ -224,7 +230,11 @@ Status KeyframeTrainer::ForwardBackward(int view) {
     M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, model_.sh_degree, &quantized_));
     CopyLeadingRows(model_, options_.frozen_gaussians, &quantized_);  // coded as they are
   }
-  const GaussianLayerView layer = LayerView(QuantizationAware() ? quantized_ : model_);
+  GaussianLayerView layer = LayerView(QuantizationAware() ? quantized_ : model_);
+  if (Smoothing()) {
+    filter_.Apply(model_);
+    layer = filter_.View(model_);
+  }
   M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, Settings(), nullptr, &context_));
   Reshape(camera.width, camera.height, 3, &rendered_);
   std::copy(context_.color.begin(), context_.color.end(), rendered_.pixels.begin());
@@ -241,6 +251,7 @@ Status KeyframeTrainer::ForwardBackward(int view) {
   out.mean2d = mean2d_.data();
   M4D_RETURN_IF_ERROR(
       RenderBackward(loss_gradient_.pixels.data(), nullptr, &context_, out, &backward_workspace_));
+  if (Smoothing()) filter_.Backward(model_, &gradients_);
 
   double mse = 0;
   M4D_RETURN_IF_ERROR(MeanSquaredError(rendered_, target, &mse));
@@ -258,8 +269,8 @@ bool KeyframeTrainer::QuantizationAware() const {
 
 Status KeyframeTrainer::PruneUnimportant() {
   std::vector<double> weights;
-  M4D_RETURN_IF_ERROR(
-      BlendingWeights(model_, views_, Settings(), &context_, &backward_workspace_, &weights));
+  M4D_RETURN_IF_ERROR(BlendingWeights(Smoothing() ? FilteredModel() : model_, views_, Settings(),
+                                      &context_, &backward_workspace_, &weights));
   std::vector<uint8_t> keep =
       KeepImportant(weights, options_.importance_prune_share, options_.min_importance_pixels,
                     options_.densification.max_prune_fraction);
@@ -286,6 +297,7 @@ Status KeyframeTrainer::Step() {
       active_sh_degree_ < model_.sh_degree) {
     ++active_sh_degree_;
   }
+  RefitSmoothingFilter(it);
   M4D_RETURN_IF_ERROR(ForwardBackward(NextView()));
 
   const Camera& camera = context_.camera;
@@ -320,10 +332,32 @@ Status KeyframeTrainer::Step() {
     StepGaussianOptimizer(gradients_, outcome.skip_step, &optimizer_, &model_, pool_.get());
   }
   strategy_->AfterStep(step, state);
+  BakeSmoothingFilter(it);
   progress_.iteration = it;
   progress_.gaussians = model_.size();
   RecordTenth();
   return Status::Ok();
+}
+
+// Every few iterations and whenever the rows changed count: a Gaussian's filter follows its
+// centre, and densification or relocation moves centres.
+void KeyframeTrainer::RefitSmoothingFilter(int iteration) {
+  if (!Smoothing()) return;
+  if (filter_.size() == model_.size() && iteration % kSmoothingRefitInterval != 0) return;
+  filter_.Fit(model_, views_.cameras, options_.smoothing_filter_variance,
+              options_.frozen_gaussians);
+}
+
+// Before the quantization-aware iterations (which render the model as coded), else after the
+// last: what leaves the trainer is plain 3D Gaussians.
+void KeyframeTrainer::BakeSmoothingFilter(int iteration) {
+  if (!Smoothing()) return;
+  if (iteration < options_.iterations - options_.quantization_aware_iterations) return;
+  filter_.Fit(model_, views_.cameras, options_.smoothing_filter_variance,
+              options_.frozen_gaussians);
+  filter_.Apply(model_);
+  filter_.Bake(&model_);
+  filter_baked_ = true;
 }
 
 void KeyframeTrainer::RecordTenth() {
@@ -362,7 +396,17 @@ Status KeyframeTrainer::TrainUntil(int last, const ProgressCallback& progress, i
 
 Status KeyframeTrainer::Evaluate(const TrainingViews& views, EvaluationResult* result) {
   if (!rng_) return Status(M4D_ERR_INVALID_ARG, "keyframe training: not initialised");
-  return EvaluateViews(model_, views, Settings(), &context_, result);
+  return EvaluateViews(Smoothing() ? FilteredModel() : model_, views, Settings(), &context_,
+                       result);
+}
+
+GaussianModel KeyframeTrainer::FilteredModel() const {
+  SmoothingFilter3d filter;
+  filter.Fit(model_, views_.cameras, options_.smoothing_filter_variance, options_.frozen_gaussians);
+  filter.Apply(model_);
+  GaussianModel filtered = model_;
+  filter.Bake(&filtered);
+  return filtered;
 }
 
 StrategyHolder MakeDensificationStrategy(const KeyframeTrainingOptions& options, float scene_extent,

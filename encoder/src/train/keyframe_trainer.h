@@ -46,6 +46,7 @@
 #include "train/learning_rate_schedule.h"
 #include "train/mcmc_densification.h"
 #include "train/progress_bar.h"
+#include "train/smoothing_filter_3d.h"
 #include "train/training_random.h"
 #include "train/training_views.h"
 #include "train/view_evaluation.h"
@@ -108,20 +109,24 @@ struct KeyframeTrainingOptions {
   int start_sh_degree = 0;        // active at the start (the model's degree when retraining)
   int sh_degree = 3;              // SH degree of a model TrainKeyframe initialises (0..3)
   double ssim_weight = kDefaultSsimWeight;
+  // Variance of Mip-Splatting's 3D smoothing filter in squared pixels of the finest training
+  // camera seeing each Gaussian (smoothing_filter_3d.h; 0: none; the paper's 0.2). The filter
+  // is baked into the model before the quantization-aware iterations, or at the end.
+  float smoothing_filter_variance = 0.0f;
   // Adam's rate for a colour gain and offset per training view (camera_colour.h; 0: none).
   // Short() learns them (keyframes and their retraining); the lookahead fine-tuning, its
   // colours frozen, does not.
   float camera_colour_learning_rate = 0.0f;
   float background[3] = {0.0f, 0.0f, 0.0f};
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
-  // Without points: this many Gaussians from photo_consistent_points.h, or uniform at random
-  // in the cameras' box (random_initialisation, the reference's way).
+  // Without points: this many Gaussians from photo_consistent_points.h, or at random in the
+  // part of the cameras' box two views see (random_initialisation; random_start.h).
   size_t random_points = 100000;
   bool random_initialisation = false;
-  // Without points (and without random_initialisation), this many points spread over the
-  // background shell (background_shell.h) join the start, those no two views see dropped,
-  // at most a quarter of the start (0: none). Short() spreads 20000: on Panoptic basketball
-  // the dome wall then stands where the held-out cameras see it (docs/results/, 2026-11-29).
+  // Without points, this many points spread over the background shell (background_shell.h) join the
+  // start, those no two views see dropped, at most a quarter of the start (0: none). Short()
+  // spreads 20000: on Panoptic basketball the dome wall then stands where the held-out cameras see
+  // it (docs/results/, 2026-11-29).
   size_t background_shell_points = 0;
   uint64_t seed = 0;
   int threads = 0;  // 0: the hardware's concurrency
@@ -222,6 +227,11 @@ class KeyframeTrainer {
   Status PruneUnimportant();
   void RecordTenth();
   bool QuantizationAware() const;
+  bool Smoothing() const { return options_.smoothing_filter_variance > 0.0f && !filter_baked_; }
+  void RefitSmoothingFilter(int iteration);
+  void BakeSmoothingFilter(int iteration);
+  // The model as training renders it (the filter applied): what pruning and evaluation see.
+  GaussianModel FilteredModel() const;
 
   KeyframeTrainingOptions options_;
   TrainingViews views_;
@@ -253,6 +263,8 @@ class KeyframeTrainer {
   Image loss_gradient_;
   std::vector<float> mean2d_;
   CameraColour camera_colour_;
+  SmoothingFilter3d filter_;
+  bool filter_baked_ = false;
 
   PhotometricLossValue last_loss_;
   TrainingProgress progress_;

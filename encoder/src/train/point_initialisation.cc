@@ -7,7 +7,6 @@
 
 #include "geometry/nearest_neighbours.h"
 #include "render/render_settings.h"
-#include "train/training_random.h"
 
 namespace m4d {
 namespace {
@@ -76,26 +75,6 @@ Status InitialiseFromPoints(const PointCloud& points, const PointInitialisationO
     }
   }
   return Status::Ok();
-}
-
-Status InitialiseRandom(const float lo[3], const float hi[3], size_t count, uint64_t seed,
-                        const PointInitialisationOptions& options, GaussianModel* model) {
-  for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(lo[a]) || !std::isfinite(hi[a]) || !(lo[a] <= hi[a])) {
-      return Status(M4D_ERR_INVALID_ARG, "random initialisation: bad box");
-    }
-  }
-  if (count > kMaxRenderGaussians) return LimitError("random initialisation: too many points");
-  TrainingRandom rng(seed);
-  PointCloud points;
-  points.positions.resize(3 * count);
-  points.colors.resize(3 * count);
-  for (size_t i = 0; i < count; ++i) {
-    for (int a = 0; a < 3; ++a)
-      points.positions[3 * i + a] = lo[a] + (hi[a] - lo[a]) * rng.Uniform();
-    for (int c = 0; c < 3; ++c) points.colors[3 * i + c] = rng.Uniform();
-  }
-  return InitialiseFromPoints(points, options, model);
 }
 
 }  // namespace m4d

@@ -30,11 +30,6 @@ struct PointInitialisationOptions {
 Status InitialiseFromPoints(const PointCloud& points, const PointInitialisationOptions& options,
                             GaussianModel* model);
 
-// `count` points uniform in the axis-aligned box [lo, hi] with uniform random colours, then
-// InitialiseFromPoints.
-Status InitialiseRandom(const float lo[3], const float hi[3], size_t count, uint64_t seed,
-                        const PointInitialisationOptions& options, GaussianModel* model);
-
 }  // namespace m4d
 
 #endif  // M4D_ENCODER_TRAIN_POINT_INITIALISATION_H_

@@ -74,10 +74,14 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
   *choice = PruneShareChoice();
   const int held_out_count = HeldOutCount(views.size(), selection);
   if (held_out_count == 0) return Status::Ok();
-  const KeyframeTrainingOptions schedule = ShortenedSchedule(options, selection.schedule_fraction);
+  KeyframeTrainingOptions schedule = ShortenedSchedule(options, selection.schedule_fraction);
   if (schedule.densify_until <= 1 || schedule.densify_until > schedule.iterations) {
     return Status(M4D_ERR_INVALID_ARG, "prune share selection: the schedule never prunes");
   }
+  // The branches stop early; the learning rates keep the shortened schedule's decay.
+  schedule.iterations = std::min(
+      schedule.iterations,
+      schedule.densify_until + ScaledCount(schedule.iterations, selection.branch_fraction));
   // Shared until the iteration before the prune; each branch is a copy from there.
   TrainingViews validation;
   KeyframeTrainer trunk;

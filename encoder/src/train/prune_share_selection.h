@@ -44,6 +44,11 @@ struct PruneShareSelectionOptions {
   int views_per_held_out = 10;
   // The shortened schedule: this share of the keyframe's iterations, same proportions.
   double schedule_fraction = 0.5;
+  // Each branch runs this share of the shortened schedule's iterations after the prune, not
+  // the rest of it: the branches were two thirds of `m4d train`'s time on Panoptic, and the
+  // held-out views rank the candidates as the full branches did
+  // (docs/results/2026-11-29-quality-per-minute.md).
+  double branch_fraction = 0.125;
 };
 
 struct PruneShareTrial : BranchResult {

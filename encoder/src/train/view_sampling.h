@@ -7,6 +7,7 @@
 
 #include "image/image.h"
 #include "render/camera.h"
+#include "train/training_views.h"
 
 namespace m4d {
 
@@ -22,6 +23,22 @@ inline bool SampleView(const Camera& camera, const Image& image, const float p[3
   if (!(u >= 0 && v >= 0 && u < camera.width && v < camera.height)) return false;
   const float* px = image.row(static_cast<int>(v)) + 3 * static_cast<int>(u);
   std::copy_n(px, 3, rgb);
+  return true;
+}
+
+// The mean colour the views see at p, if at least min_views of them see it.
+inline bool MeanViewColour(const TrainingViews& views, const float p[3], int min_views,
+                           float rgb[3]) {
+  double sum[3] = {0, 0, 0};
+  int seen = 0;
+  for (int v = 0; v < views.size(); ++v) {
+    float sample[3];
+    if (!SampleView(views.cameras[v], views.images[v], p, sample)) continue;
+    ++seen;
+    for (int c = 0; c < 3; ++c) sum[c] += sample[c];
+  }
+  if (seen < min_views || seen == 0) return false;
+  for (int c = 0; c < 3; ++c) rgb[c] = static_cast<float>(sum[c] / seen);
   return true;
 }
 
