@@ -192,6 +192,8 @@ Status RunTrain(const TrainArguments& args) {
     M4D_RETURN_IF_ERROR(EvaluateViews(model, test, settings, nullptr, &test_quality));
     std::printf("%-28s %.2f dB  SSIM %.4f\n", "held-out camera", test_quality.mean_psnr,
                 test_quality.mean_ssim);
+    std::printf("%-28s %.2f dB (a gain and offset per camera and channel fitted to its image)\n",
+                "held-out, colour fitted", test_quality.mean_colour_fitted_psnr);
     M4D_RETURN_IF_ERROR(
         PrintCodedQuality(model, args.sh_degree, options.quantization, test, settings));
     if (!args.render.empty()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "metrics/colour_fitted_psnr.h"
 #include "metrics/psnr.h"
 #include "metrics/ssim.h"
 #include "render/splat_renderer.h"
@@ -32,13 +33,16 @@ Status EvaluateViews(const GaussianModel& model, const TrainingViews& views,
     ViewQuality q;
     M4D_RETURN_IF_ERROR(Psnr(rendered, views.images[v], &q.psnr));
     M4D_RETURN_IF_ERROR(SsimZeroPadded(rendered, views.images[v], &q.ssim, nullptr, &workspace));
+    M4D_RETURN_IF_ERROR(ColourFittedPsnr(rendered, views.images[v], &q.colour_fitted_psnr));
     out.mean_psnr += q.psnr;
     out.mean_ssim += q.ssim;
+    out.mean_colour_fitted_psnr += q.colour_fitted_psnr;
     out.views.push_back(q);
   }
   if (!out.views.empty()) {
     out.mean_psnr /= static_cast<double>(out.views.size());
     out.mean_ssim /= static_cast<double>(out.views.size());
+    out.mean_colour_fitted_psnr /= static_cast<double>(out.views.size());
   }
   *result = std::move(out);
   return Status::Ok();
