@@ -118,5 +118,26 @@ TEST(KeyframeStartTest, AChainOfStartsNeverRefuses) {
   EXPECT_EQ(initial.size(), chain.points + tried.back().points);
 }
 
+// A random start leaves ADC room to grow (a tenth of the count); MCMC, which cannot grow that
+// far in a short schedule, starts from all of it.
+TEST(KeyframeStartTest, ARandomStartLeavesAdcRoomToGrow) {
+  const Capture capture = SparseCaptureWithoutPoints();
+  TrainingViews views;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &views).ok());
+  size_t drawn[2] = {0, 0};
+  for (auto strategy :
+       {DensificationStrategyKind::kAdaptiveDensityControl, DensificationStrategyKind::kMcmc}) {
+    GaussianModel initial;
+    std::vector<KeyframeStart> tried;
+    ASSERT_TRUE(
+        InitialKeyframeModel(capture, views, Options(strategy, true), &initial, &tried).ok());
+    ASSERT_EQ(tried.size(), 1u);  // no shell in these options
+    EXPECT_EQ(initial.size(), tried[0].points);
+    drawn[strategy == DensificationStrategyKind::kMcmc] = initial.size();
+  }
+  EXPECT_EQ(drawn[1], 3000u);  // Options' random_points, below the cap
+  EXPECT_EQ(drawn[0], 300u);
+}
+
 }  // namespace
 }  // namespace m4d

@@ -12,6 +12,8 @@
 namespace m4d {
 namespace {
 
+constexpr size_t kAdcRandomStartDivisor = 10;
+
 // Photo-consistent points seen by at least `min_views` views.
 Status PhotoConsistentStart(const TrainingViews& views, const KeyframeTrainingOptions& options,
                             size_t points, int min_views, PointCloud* cloud) {
@@ -58,6 +60,16 @@ Status ShellPoints(const TrainingViews& views, size_t requested, size_t limit, P
   return Status::Ok();
 }
 
+// How many of `wanted` points a random start draws. ADC grows the model where its gradients
+// ask, up to the cap, so a random start as large as the cap leaves it no room: it starts from a
+// tenth, about the reference's proportion (100k random points for models that grow to a
+// million). MCMC grows by a few percent per refinement and would not reach its budget from a
+// tenth within the short schedule, so it starts full (docs/design/densification_strategies.md).
+size_t RandomStartCount(size_t wanted, DensificationStrategyKind strategy) {
+  if (strategy == DensificationStrategyKind::kMcmc) return wanted;
+  return std::max<size_t>(wanted / kAdcRandomStartDivisor, 1);
+}
+
 // The chain without the shell.
 Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& options,
                      const PointInitialisationOptions& init, size_t start_points,
@@ -77,7 +89,8 @@ Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& 
   }
   GaussianModel random;
   GaussianModel* box = found.size() > 0 ? &random : initial;
-  M4D_RETURN_IF_ERROR(RandomStart(views, options, start_points - found.size(), init, box));
+  const size_t drawn = RandomStartCount(start_points - found.size(), options.strategy);
+  M4D_RETURN_IF_ERROR(RandomStart(views, options, drawn, init, box));
   if (found.size() > 0) {
     GaussianModel swept;
     M4D_RETURN_IF_ERROR(InitialiseFromPoints(found, init, &swept));
