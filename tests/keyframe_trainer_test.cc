@@ -184,6 +184,19 @@ TEST(KeyframeTrainerTest, LearnsAHeldOutView) {
   EXPECT_LT(run.progress.back().loss, run.progress.front().loss);
 }
 
+// Every iteration fits the views at half size (32x24): the model still renders the held-out
+// view at full size, so the coarse views' cameras and images agree with the full ones.
+TEST(KeyframeTrainerTest, CoarseViewsTrainTheFullSizeModel) {
+  const Scene scene = MakeScene();
+  KeyframeTrainingOptions options = TestOptions();
+  options.coarse_to_fine = {1, options.iterations + 1};
+  const TrainingRun run = Train(scene, options);
+  std::printf("held-out PSNR %.2f -> %.2f dB, trained at half size\n", run.initial_test.mean_psnr,
+              run.final_test.mean_psnr);
+  EXPECT_GT(run.final_test.mean_psnr, run.initial_test.mean_psnr + 6.0);
+  EXPECT_GT(run.final_test.mean_psnr, 24.0);
+}
+
 TEST(KeyframeTrainerTest, SameSeedSameModelWhateverTheThreads) {
   const Scene scene = MakeScene();
   KeyframeTrainingOptions options = TestOptions();
@@ -810,6 +823,7 @@ TEST(PruneShareSelectionTest, ShortenedScheduleKeepsTheProportions) {
   EXPECT_EQ(s.iterations, 1000);
   EXPECT_EQ(s.learning_rates.position.max_steps, 1000);
   EXPECT_EQ(s.densify_until, half.densify_until);
+  EXPECT_EQ(s.coarse_to_fine.until, half.coarse_to_fine.until);
   EXPECT_EQ(s.opacity_reset_interval, 429);  // 857 / 2, rounded half away
   EXPECT_EQ(s.quantization_aware_iterations, 0);
   EXPECT_EQ(s.importance_prune_share, 0.0f);

@@ -42,6 +42,8 @@ struct TrainArguments {
   int background_shell = -1;        // points (< 0: the schedule's)
   double gaussians_per_pixel = -1;  // < 0: the schedule's
   double smoothing_filter = -1;     // < 0: the schedule's
+  int coarse_levels = -1;           // < 0: the schedule's
+  double coarse_until = -1;         // share of the run (< 0: the schedule's)
   PruneShareArguments prune;
   double prune_below = -1;         // < 0: the schedule's
   int quantization_aware = -1;     // iterations (< 0: the schedule's)
@@ -140,6 +142,10 @@ Status RunTrain(const TrainArguments& args) {
   }
   if (args.smoothing_filter >= 0) {
     options.smoothing_filter_variance = static_cast<float>(args.smoothing_filter);
+  }
+  if (args.coarse_levels >= 0) options.coarse_to_fine.levels = args.coarse_levels;
+  if (args.coarse_until >= 0) {
+    options.coarse_to_fine.until = static_cast<int>(args.coarse_until * options.iterations);
   }
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
@@ -266,6 +272,14 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
                   "without initial points, this many points over the sphere of the cameras join "
                   "the start (those no two views see dropped; 0: none)")
       ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--coarse-levels", args->coarse_levels,
+                  "the first iterations fit views downscaled by 2^N, then by half as much, ... "
+                  "(default 0: full size throughout)")
+      ->check(CLI::Range(0, kMaxCoarseLevels));
+  cmd->add_option("--coarse-until", args->coarse_until,
+                  "with --coarse-levels, the share of the run before views are full size (default "
+                  "0.25)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--iterations", args->iterations,
                   "iterations of the short schedule, its phases scaled (default 7000)")
       ->check(CLI::NonNegativeNumber);

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "dataset/camera_downscale.h"
 #include "dataset/initial_points.h"
 #include "dataset/world_handedness.h"
 #include "image/area_resize.h"
@@ -28,23 +29,6 @@ class WindowedFrameSource : public FrameSource {
   int first_frame_;
   int downscale_;
 };
-
-Status Downscale(int factor, Camera* camera) {
-  const int width = camera->width / factor, height = camera->height / factor;
-  if (width < 1 || height < 1) {
-    return Status(M4D_ERR_INVALID_ARG,
-                  "capture: downscale " + std::to_string(factor) + " leaves no pixels");
-  }
-  const double sx = static_cast<double>(width) / camera->width;
-  const double sy = static_cast<double>(height) / camera->height;
-  camera->fx = static_cast<float>(camera->fx * sx);
-  camera->cx = static_cast<float>(camera->cx * sx);
-  camera->fy = static_cast<float>(camera->fy * sy);
-  camera->cy = static_cast<float>(camera->cy * sy);
-  camera->width = width;
-  camera->height = height;
-  return Status::Ok();
-}
 
 void SelectTestCameras(int test_camera, Capture* capture) {
   if (test_camera >= 0) {
@@ -93,7 +77,7 @@ Status ApplyCaptureOptions(const CaptureOptions& options, Capture* capture) {
   M4D_RETURN_IF_ERROR(MakeWorldRightHanded(capture));
   for (std::vector<Camera>& row : capture->cameras) {
     for (Camera& camera : row) {
-      if (options.downscale > 1) M4D_RETURN_IF_ERROR(Downscale(options.downscale, &camera));
+      if (options.downscale > 1) M4D_RETURN_IF_ERROR(DownscaleCamera(options.downscale, &camera));
       const Status valid = ValidateCamera(camera);
       if (!valid.ok()) {
         return Status(M4D_ERR_INVALID_ARG, capture->layout + ": " + valid.message());

@@ -615,6 +615,7 @@ KeyframeTrainingOptions SequenceEncoder::RetrainingOptions(int frame, bool depen
   o.densify_interval = std::max(1, options_.retrain_iterations / 20);
   o.opacity_reset_interval = 0;
   o.sh_degree_interval = 0;
+  o.coarse_to_fine = CoarseToFineSchedule();  // it starts from a fitted model, not a coarse one
   o.quantization_aware_iterations =
       options_.keyframe.quantization_aware_iterations > 0 ? options_.retrain_iterations / 4 : 0;
   o.quantization = options_.quantization;

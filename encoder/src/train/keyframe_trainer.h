@@ -40,6 +40,7 @@
 #include "render/splat_backward.h"
 #include "train/adam_optimizer.h"
 #include "train/camera_colour.h"
+#include "train/coarse_to_fine.h"
 #include "train/densification.h"
 #include "train/densification_strategy.h"
 #include "train/gaussian_model.h"
@@ -117,6 +118,8 @@ struct KeyframeTrainingOptions {
   // Short() learns them (keyframes and their retraining); the lookahead fine-tuning, its
   // colours frozen, does not.
   float camera_colour_learning_rate = 0.0f;
+  // The first iterations fit downscaled views (coarse_to_fine.h; levels 0: none).
+  CoarseToFineSchedule coarse_to_fine;
   float background[3] = {0.0f, 0.0f, 0.0f};
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
   // Without points: this many Gaussians from photo_consistent_points.h, or at random in the
@@ -235,6 +238,7 @@ class KeyframeTrainer {
 
   KeyframeTrainingOptions options_;
   TrainingViews views_;
+  ViewPyramid pyramid_;  // the coarse-to-fine levels of views_
   GaussianModel model_;
   GaussianModel gradients_;
   GaussianModel quantized_;  // what the forward pass renders while quantization-aware

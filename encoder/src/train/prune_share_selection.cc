@@ -62,6 +62,7 @@ KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options
   o.opacity_reset_interval = ScaledCount(options.opacity_reset_interval, fraction);
   o.reset_recovery = ScaledCount(options.reset_recovery, fraction);
   o.sh_degree_interval = ScaledCount(options.sh_degree_interval, fraction);
+  o.coarse_to_fine.until = ScaledCount(options.coarse_to_fine.until, fraction);
   o.quantization_aware_iterations = 0;
   o.importance_prune_share = 0.0f;
   return o;
