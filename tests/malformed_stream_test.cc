@@ -213,21 +213,51 @@ TEST(MalformedStreamLimits, CompensationAboveTheLimit) {
   const DecodeResult r = DecodeWith(s, stream.packets);
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_EQ(r.errors.front(), M4D_ERR_LIMIT);
-  EXPECT_EQ(r.hashes.size(), 1u);  // the keyframe
+  // The keyframe, and frame 1 with its dynamic layer concealed (spec 6.8).
+  ASSERT_EQ(r.hashes.size(), 2u);
+  EXPECT_EQ(r.hashes[0], stream.recon_hashes[0]);
+  EXPECT_NE(r.hashes[1], stream.recon_hashes[1]);
   s.max_gaussians = 118;
   EXPECT_TRUE(DecodeWith(s, stream.packets).errors.empty());
 }
 
 TEST_F(MalformedStream, DecodingResumesAtTheNextGopAfterAnError) {
   std::vector<Packet> packets = stream_->packets;
-  packets[4][40] ^= 0xff;  // damage frame 1's MOTION_GRID payload (CRC now wrong)
+  packets.erase(packets.begin() + 4);  // frame 1's MOTION_GRID lost: the packet order breaks
   const DecodeResult r = DecodeWith(DefaultSettings(), packets);
   ASSERT_EQ(r.errors.size(), 1u);
-  EXPECT_EQ(r.errors[0], M4D_ERR_CHECKSUM);
+  EXPECT_EQ(r.errors[0], M4D_ERR_BITSTREAM);
   // Frame 0 decodes; frames 1 and 2 are lost; GOP 1 (frames 3..5) decodes exactly.
   ASSERT_EQ(r.hashes.size(), 4u);
   EXPECT_EQ(r.hashes[0], stream_->recon_hashes[0]);
   for (size_t i = 1; i < 4; ++i) EXPECT_EQ(r.hashes[i], stream_->recon_hashes[i + 2]);
+}
+
+// A damaged payload loses its layer, not the GOP (spec 6.8): the dynamic layer freezes at
+// frame 0 for the rest of the GOP, flagged, and the static layer stays exact.
+TEST_F(MalformedStream, ADamagedMotionGridFreezesTheDynamicLayerUntilTheNextKeyframe) {
+  std::vector<Packet> packets = stream_->packets;
+  packets[4][40] ^= 0xff;  // frame 1's MOTION_GRID payload (CRC now wrong)
+  M4dContext* ctx = nullptr;
+  M4dSettings settings = DefaultSettings();
+  ASSERT_EQ(m4d_open(&ctx, &settings), M4D_OK);
+  std::vector<uint32_t> concealed;
+  std::vector<uint32_t> dynamic_counts;
+  for (const Packet& p : packets) {
+    m4d_send_packet(ctx, p.data(), p.size());
+    M4dFrame frame;
+    while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+      concealed.push_back(frame.concealed_layers);
+      dynamic_counts.push_back(frame.dynamic_layer.count);
+      m4d_frame_unref(&frame);
+    }
+  }
+  m4d_close(&ctx);
+  const uint32_t d = M4D_LAYER_DYNAMIC;
+  EXPECT_EQ(concealed, (std::vector<uint32_t>{0, d, d, 0, 0, 0}));
+  const uint32_t frozen = static_cast<uint32_t>(stream_->dynamic_counts[0]);
+  EXPECT_EQ(dynamic_counts[1], frozen);
+  EXPECT_EQ(dynamic_counts[2], frozen);
 }
 
 TEST_F(MalformedStream, ByteFlipsInPayloadsNeverCrash) {

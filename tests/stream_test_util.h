@@ -196,6 +196,7 @@ inline DecodeResult DecodeWith(const M4dSettings& settings, const std::vector<Pa
 // (bytes were skipped), after a failed send resynchronise right after the packet's header.
 struct PlayResult {
   std::vector<std::pair<uint32_t, std::string>> frames;  // (frame_index, hash) in output order
+  std::vector<uint32_t> concealed;                       // M4dFrame.concealed_layers of each frame
   std::vector<int> errors;                               // header and send errors, in order
   bool truncated = false;  // the data ends inside a packet or a frame (spec 9, TRUNCATED)
   size_t steps = 0;        // loop iterations (each moves forward)
@@ -209,6 +210,7 @@ inline PlayResult PlayBytes(const M4dSettings& settings, const std::vector<uint8
     M4dFrame frame;
     while (m4d_get_frame(ctx, &frame) == M4D_OK) {
       out.frames.emplace_back(frame.frame_index, HashOf(frame));
+      out.concealed.push_back(frame.concealed_layers);
       m4d_frame_unref(&frame);
     }
   };

@@ -66,6 +66,11 @@ const char* ErrorName(int code) {
   }
 }
 
+const char* ConcealedLayers(uint32_t layers) {
+  if (layers == M4D_LAYER_ALL) return "both layers";
+  return layers == M4D_LAYER_STATIC ? "static layer" : "dynamic layer";
+}
+
 // Reports an error with its byte offset; the first one also as the conformance contract's
 // line "first_error NAME" (conformance/README.md).
 class ErrorReport {
@@ -139,7 +144,7 @@ int main(int argc, char** argv) {
   if (m4d_open(&ctx, &settings) < 0) return 2;
 
   ErrorReport errors;
-  int frames = 0, gop = -1;
+  int frames = 0, gop = -1, concealed = 0;
   bool inside_frame = false;  // the last packet header read has no end_of_frame
   size_t pos = 0, skipped = 0;
   if (opt.start_frame >= 0) {
@@ -169,6 +174,11 @@ int main(int argc, char** argv) {
       Hex(md5, hex);
       std::fprintf(out, "%u %s\n", frame.frame_index, hex);
       ++frames;
+      if (frame.concealed_layers != 0) {
+        ++concealed;
+        std::fprintf(stderr, "m4d_decode: frame %u: %s concealed (damaged stream)\n",
+                     frame.frame_index, ConcealedLayers(frame.concealed_layers));
+      }
       m4d_frame_unref(&frame);
     }
   };
@@ -222,8 +232,10 @@ int main(int argc, char** argv) {
   }
   if (frames == 0) std::fprintf(stderr, "m4d_decode: no frame decoded\n");
   if (!opt.quiet) {
-    std::fprintf(stderr, "m4d_decode: %d frames, %d packet errors, %zu bytes skipped, %.1f ms\n",
-                 frames, errors.count(), skipped, decode_ms);
+    std::fprintf(stderr,
+                 "m4d_decode: %d frames (%d concealed), %d packet errors, %zu bytes skipped, "
+                 "%.1f ms\n",
+                 frames, concealed, errors.count(), skipped, decode_ms);
     if (configured) {
       std::fprintf(stderr,
                    "m4d_decode: bitstream %u.%u, %u/%u fps, SH degree %u, %u GOPs (%u random "

@@ -27,6 +27,8 @@ export interface M4dFrame {
   isKeyframe: boolean;
   /** Bits: 1 static, 2 dynamic. */
   layers: number;
+  /** Bits of the layers lost to damage and concealed (bitstream-spec 6.8); 0 when intact. */
+  concealedLayers: number;
   static: M4dLayerView;
   dynamic: M4dLayerView;
   /** The normative frame hash (bitstream-spec 7), 32 hex digits. */

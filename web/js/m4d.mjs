@@ -253,6 +253,7 @@ export class M4dFrame {
     this.frameIndex = wasm._m4dw_frame_index(s) >>> 0;  // u32: frame numbers wrap at 2^32
     this.isKeyframe = wasm._m4dw_frame_is_keyframe(s) !== 0;
     this.layers = wasm._m4dw_frame_layers(s);
+    this.concealedLayers = wasm._m4dw_frame_concealed_layers(s);
     this.static = layerView(wasm, wasm._m4dw_frame_layer(s, 1));
     this.dynamic = layerView(wasm, wasm._m4dw_frame_layer(s, 2));
   }

@@ -157,6 +157,13 @@ function currentCamera() {
 
 // --- decoding and drawing ----------------------------------------------------------------
 
+// The layers damage made the decoder conceal in the frame on screen (bitstream-spec 6.8).
+function concealedText(layers) {
+  if (!layers) return '';
+  const names = [layers & 1 ? 'static' : '', layers & 2 ? 'dynamic' : ''].filter(Boolean);
+  return ` (${names.join(' and ')} layer concealed: damaged stream)`;
+}
+
 function layersShown() {
   return $('foreground').checked ? 'dynamic' : 'all';
 }
@@ -179,7 +186,8 @@ function advance() {
   state.decodeMs = performance.now() - start;
   if (!state.orbit.centre) setUpOrbit(frame);
   renderer.upload(decoder, layersShown());
-  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe };
+  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe,
+                  concealed: frame.concealedLayers };
   state.lastShown = frame.frameIndex;
   return true;
 }
@@ -205,7 +213,7 @@ function updateReadout() {
   $('seek').max = String(frames - 1);
   if (state.frame) {
     $('seek').value = String(state.frame.index);
-    $('frame').textContent = `frame ${state.frame.index} / ${frames - 1}${state.frame.isKeyframe ? ' (key)' : ''}`;
+    $('frame').textContent = `frame ${state.frame.index} / ${frames - 1}${state.frame.isKeyframe ? ' (key)' : ''}${concealedText(state.frame.concealed)}`;
   }
   const stats = state.frame ? renderer.stats() : { visible: 0 };
   $('readout').textContent =

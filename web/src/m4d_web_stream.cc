@@ -233,6 +233,10 @@ EMSCRIPTEN_KEEPALIVE int m4dw_frame_is_keyframe(const M4dWebStream* s) {
   return s->frame.is_keyframe;
 }
 EMSCRIPTEN_KEEPALIVE uint32_t m4dw_frame_layers(const M4dWebStream* s) { return s->frame.layers; }
+// The layers lost to damage and concealed (M4dFrame.concealed_layers).
+EMSCRIPTEN_KEEPALIVE uint32_t m4dw_frame_concealed_layers(const M4dWebStream* s) {
+  return s->frame.concealed_layers;
+}
 // The frame's M4dGaussians of `layer` (M4D_LAYER_STATIC or M4D_LAYER_DYNAMIC). In wasm32 it
 // is eight 32-bit words: count, sh_degree, sh_coefficients, then the five array addresses.
 EMSCRIPTEN_KEEPALIVE const M4dGaussians* m4dw_frame_layer(const M4dWebStream* s, uint32_t layer) {

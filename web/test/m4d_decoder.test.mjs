@@ -163,6 +163,18 @@ test('every invalid stream gives its frames and its first error, without throwin
   }
 });
 
+test('a damaged dynamic payload conceals that layer and plays every frame', () => {
+  // bad_payload_crc: the first GOP's KEYFRAME_DYNAMIC is damaged (bitstream-spec 6.8).
+  const decoder = m4d.openDecoder();
+  decoder.push(read(invalid, 'bad_payload_crc.m4d'));
+  decoder.end();
+  const concealed = [];
+  for (let f; (f = decoder.nextFrame()); ) concealed.push([f.frameIndex, f.concealedLayers]);
+  assert.deepEqual(concealed, [[0, 2], [1, 2], [2, 2], [3, 0], [4, 0], [5, 0]]);
+  assert.equal(decoder.errors.firstCodeName, 'M4D_ERR_CHECKSUM');
+  decoder.close();
+});
+
 test('a stream cut inside a packet is reported as truncated once it ends', () => {
   const data = read(streams, 'enc_adaptive_gop.m4d');
   const decoder = m4d.openDecoder();

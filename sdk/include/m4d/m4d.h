@@ -161,8 +161,13 @@ typedef struct M4dFrame {
   /* The props sent with the packet that completed this frame (its last packet: MLP_WEIGHTS or
    * COMPENSATION); the defaults of M4dDataProps when that packet came without. */
   M4dDataProps props;
-  void* internal;       /* owned by the library; release with m4d_frame_unref */
-  uint8_t reserved[32]; /* zero; room for later fields */
+  void* internal; /* owned by the library; release with m4d_frame_unref */
+  /* Layers (M4D_LAYER_* bits) lost to a damaged payload (bitstream-spec 6.8): their content is
+   * a concealment, not the stream's. The static layer is then the last one output (the
+   * previous GOP's, or empty), the dynamic layer frozen at its last frame output. 0 for an
+   * intact frame. The frame hash counts a concealed layer as not output. */
+  uint32_t concealed_layers;
+  uint8_t reserved[28]; /* zero; room for later fields */
 } M4dFrame;
 
 /* What m4d_parse_packet_header reads from a packet header. */
@@ -247,11 +252,16 @@ M4D_API int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t fr
  *   0                 the packet was consumed (a frame may now be ready);
  *   M4D_ERR_AGAIN     a decoded frame is waiting: call m4d_get_frame, then send this packet
  *                     again (it was not consumed);
- *   negative          the packet was rejected (see m4d_error_string and the logger). The
- *                     decoder then skips packets until the next SEQUENCE_HEADER, so a caller
- *                     may simply continue sending. One exception: a SEQUENCE_HEADER that
- *                     arrives inside a frame gives M4D_ERR_BITSTREAM for the frame it cuts
- *                     (which is dropped) but is itself consumed, so decoding goes on. */
+ *   negative          the packet was rejected (see m4d_error_string and the logger); a
+ *                     caller may simply continue sending. A damaged payload (its CRC or
+ *                     syntax) of a static or dynamic packet loses that layer only: decoding
+ *                     goes on, every frame is output and the lost layer is concealed and
+ *                     flagged (M4dFrame.concealed_layers) until the stream restores it; the
+ *                     rejected packet may itself have completed a frame, so call
+ *                     m4d_get_frame. After any other error the decoder skips packets until
+ *                     the next SEQUENCE_HEADER, except that a SEQUENCE_HEADER that arrives
+ *                     inside a frame gives M4D_ERR_BITSTREAM for the frame it cuts (which is
+ *                     dropped) but is itself consumed, so decoding goes on. */
 M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 
 /* m4d_send_packet with props that come back in M4dFrame.props of the frame this packet

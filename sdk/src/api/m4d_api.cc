@@ -225,6 +225,7 @@ int m4d_get_frame(M4dContext* c, M4dFrame* out) {
   out->frame_index = frame.frame_index;
   out->is_keyframe = frame.is_keyframe ? 1 : 0;
   out->layers = frame.layers;
+  out->concealed_layers = frame.concealed;
   out->static_layer = m4d::GaussianView(*refs->static_layer);
   out->dynamic_layer = m4d::GaussianView(*refs->dynamic_layer);
   out->props = c->frame_props;
@@ -299,7 +300,7 @@ void m4d_frame_unref(M4dFrame* frame) {
 
 int m4d_frame_hash(const M4dFrame* frame, uint8_t md5[16]) {
   if (!frame || !md5) return M4D_ERR_INVALID_ARG;
-  m4d::FrameHash(frame->static_layer, frame->dynamic_layer, md5);
+  m4d::FrameHash(frame->static_layer, frame->dynamic_layer, frame->concealed_layers, md5);
   return M4D_OK;
 }
 

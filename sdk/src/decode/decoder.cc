@@ -70,6 +70,8 @@ void Decoder::Flush() {
   Reset();
   has_frame_ = false;
   frame_ = DecodedFrame();
+  last_static_out_.reset();
+  last_dynamic_out_.reset();
 }
 
 void Decoder::SetBackground(std::shared_ptr<const GaussianSet> background) {
@@ -95,9 +97,10 @@ Status Decoder::SendPacket(const uint8_t* data, size_t size) {
   const bool cuts_frame = status.ok() && header.type == M4D_PACKET_SEQUENCE_HEADER &&
                           stage_ != Stage::kNeedSequenceHeader && stage_ != Stage::kInter;
   const uint32_t cut_frame = frame_index_;
-  if (status.ok()) status = Dispatch(header, data + kPacketHeaderSize);
+  bool layer_error = false;
+  if (status.ok()) status = Dispatch(header, data + kPacketHeaderSize, &layer_error);
   if (!status.ok()) {
-    Reset();
+    if (!layer_error) Reset();
     return status;
   }
   if (cuts_frame) {
@@ -171,7 +174,7 @@ Status Decoder::CheckDependentKeyframe(const PacketHeader& h) const {
   return Status::Ok();
 }
 
-Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
+Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload, bool* layer_error) {
   if (h.type < M4D_PACKET_SEQUENCE_HEADER || h.type > M4D_PACKET_APPEARANCE) {
     return Status(M4D_ERR_UNSUPPORTED, "unknown packet type " + std::to_string(h.type));
   }
@@ -183,59 +186,120 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload) {
     }
     return Status::Ok();
   }
-  if (h.type != M4D_PACKET_SEQUENCE_HEADER) M4D_RETURN_IF_ERROR(CheckOrder(h));
-
+  if (h.type == M4D_PACKET_SEQUENCE_HEADER) return DecodeSequenceHeader(h, payload);
+  M4D_RETURN_IF_ERROR(CheckOrder(h));
   const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC || h.type == M4D_PACKET_STATIC_UPDATE;
-  const bool decode =
-      h.type == M4D_PACKET_SEQUENCE_HEADER
-          ? true
-          : (is_static ? wants(M4D_LAYER_STATIC) && !background_ : wants(M4D_LAYER_DYNAMIC));
   if (is_static && background_) static_known_ = false;
-  if (decode && options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
+  // A damaged payload loses its layer, not the frame (spec 6.8): the packet still takes its
+  // place in the GOP, so the frame it ends is output with that layer concealed.
+  Status status = Status::Ok();
+  if (ChecksPayload(h.type)) status = DecodeLayerPayload(h, payload);
+  if (!status.ok()) {
+    if (status.code() == M4D_ERR_NOMEM) return status;
+    *layer_error = true;
+    LoseLayer(h.type);
+  }
+  Advance(h);
+  return status;
+}
+
+// Whether a payload is read (its CRC checked): only for an output layer the decoder still
+// holds (spec 6.6, 6.8); a lost dynamic layer is restored by the next KEYFRAME_DYNAMIC.
+bool Decoder::ChecksPayload(uint8_t type) const {
+  switch (type) {
+    case M4D_PACKET_KEYFRAME_STATIC:
+    case M4D_PACKET_STATIC_UPDATE:
+      return wants(M4D_LAYER_STATIC) && !background_ && !static_lost_;
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      return wants(M4D_LAYER_DYNAMIC);
+    case M4D_PACKET_MLP_WEIGHTS:
+      return wants(M4D_LAYER_DYNAMIC) && !dynamic_lost_;
+    default:
+      return wants(M4D_LAYER_DYNAMIC) && !dynamic_lost_ && !mlp_lost_;
+  }
+}
+
+// A STATIC_UPDATE's CRC is checked but it is not applied once a caller background made S
+// unknown (spec 6.6).
+bool Decoder::DecodesPayload(uint8_t type) const {
+  return type != M4D_PACKET_STATIC_UPDATE || static_known_;
+}
+
+Status Decoder::DecodeLayerPayload(const PacketHeader& h, const uint8_t* payload) {
+  if (options_.verify_checksums && Crc32(payload, h.payload_size) != h.payload_crc) {
     return Status(M4D_ERR_CHECKSUM, std::string(PacketName(h.type)) + " (frame " +
                                         std::to_string(h.frame_index) + "): payload CRC mismatch");
   }
+  if (!DecodesPayload(h.type)) return Status::Ok();
   const size_t size = h.payload_size;
   switch (h.type) {
-    case M4D_PACKET_SEQUENCE_HEADER:
-      return DecodeSequenceHeader(h, payload);
     case M4D_PACKET_KEYFRAME_STATIC:
-      if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, true));
+      return DecodeKeyframeSet(payload, size, true);
+    case M4D_PACKET_STATIC_UPDATE:
+      return DecodeStaticUpdate(payload, size);
+    case M4D_PACKET_KEYFRAME_DYNAMIC:
+      return DecodeKeyframeSet(payload, size, false);
+    case M4D_PACKET_MLP_WEIGHTS:
+      return DecodeMlp(payload, size);
+    case M4D_PACKET_MOTION_GRID:
+      return DecodeMotion(payload, size);
+    case M4D_PACKET_APPEARANCE:
+      return DecodeAppearance(payload, size);
+    default:  // M4D_PACKET_COMPENSATION (CheckOrder rejected every other type)
+      return DecodeCompensation(payload, size);
+  }
+}
+
+void Decoder::LoseLayer(uint8_t type) {
+  const bool is_static = type == M4D_PACKET_KEYFRAME_STATIC || type == M4D_PACKET_STATIC_UPDATE;
+  if (is_static) {
+    static_lost_ = true;
+  } else if (type == M4D_PACKET_MLP_WEIGHTS) {
+    mlp_lost_ = true;  // the keyframe's own D is intact; the GOP's next frames are not
+  } else {
+    dynamic_lost_ = true;
+  }
+  if (options_.log) {
+    options_.log(M4D_LOG_WARNING,
+                 is_static ? "static layer lost: concealed until the next SEQUENCE_HEADER"
+                           : "dynamic layer lost: concealed until the next KEYFRAME_DYNAMIC");
+  }
+}
+
+// The packet order's state after a packet, decoded, skipped or lost alike.
+void Decoder::Advance(const PacketHeader& h) {
+  switch (h.type) {
+    case M4D_PACKET_KEYFRAME_STATIC:
       stats_.static_coded = true;
       stage_ = Stage::kKeyframeStatic;
-      return Status::Ok();
+      return;
     case M4D_PACKET_STATIC_UPDATE:
-      if (decode && static_known_) M4D_RETURN_IF_ERROR(DecodeStaticUpdate(payload, size));
       gop_random_access_ = false;
       frame_index_ = h.frame_index;
       stage_ = Stage::kKeyframeStatic;
-      return Status::Ok();
+      return;
     case M4D_PACKET_KEYFRAME_DYNAMIC:
-      if (decode) M4D_RETURN_IF_ERROR(DecodeKeyframeSet(payload, size, false));
       if (stage_ == Stage::kInter) gop_random_access_ = false;  // a dependent keyframe
       frame_index_ = h.frame_index;
       stage_ = Stage::kKeyframeDynamic;
-      return Status::Ok();
+      return;
     case M4D_PACKET_MLP_WEIGHTS:
-      if (decode) M4D_RETURN_IF_ERROR(DecodeMlp(payload, size));
       stage_ = Stage::kInter;
       CountKeyframe(h.frame_index);
       EmitFrame(h.frame_index, true);
-      return Status::Ok();
+      return;
     case M4D_PACKET_MOTION_GRID:
-      if (decode) M4D_RETURN_IF_ERROR(DecodeMotion(payload, size));
+      if (mlp_lost_) dynamic_lost_ = true;
       frame_index_ = h.frame_index;
       stage_ = Stage::kMotion;
-      return Status::Ok();
+      return;
     case M4D_PACKET_APPEARANCE:
-      if (decode) M4D_RETURN_IF_ERROR(DecodeAppearance(payload, size));
       stage_ = Stage::kAppearance;
-      return Status::Ok();
-    default:  // M4D_PACKET_COMPENSATION (CheckOrder rejected every other type)
-      if (decode) M4D_RETURN_IF_ERROR(DecodeCompensation(payload, size));
+      return;
+    default:  // M4D_PACKET_COMPENSATION
       stage_ = Stage::kInter;
       EmitFrame(h.frame_index, false);
-      return Status::Ok();
+      return;
   }
 }
 
@@ -253,6 +317,7 @@ Status Decoder::DecodeSequenceHeader(const PacketHeader& h, const uint8_t* paylo
   empty_static->sh_degree = sequence_.sh_degree;
   static_ = std::move(empty_static);  // stays empty in foreground-only streams
   static_known_ = true;
+  static_lost_ = dynamic_lost_ = mlp_lost_ = false;
   dynamic_ = std::make_shared<GaussianSet>(options_.allocator);
   dynamic_->sh_degree = sequence_.sh_degree;
   frame_index_ = h.frame_index;
@@ -285,6 +350,7 @@ Status Decoder::DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_s
     static_ = std::move(set);
   } else {
     dynamic_ = std::move(set);
+    dynamic_lost_ = mlp_lost_ = false;  // a new D restores a lost dynamic layer
   }
   return Status::Ok();
 }
@@ -294,7 +360,9 @@ Status Decoder::DecodeMlp(const uint8_t* payload, size_t size) {
   Status status = ReadMlpWeights(&reader, sequence_.rans_layout(), sequence_.grid.feature_count(),
                                  sequence_.mlp, &mlp_);
   if (!status.ok()) return Status(status.code(), "MLP_WEIGHTS: " + status.message());
-  return RequireConsumed(reader, "MLP_WEIGHTS");
+  M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MLP_WEIGHTS"));
+  mlp_lost_ = false;
+  return Status::Ok();
 }
 
 GaussianSet* Decoder::MutableDynamicSet() {
@@ -383,25 +451,35 @@ void Decoder::EmitFrame(uint32_t frame_index, bool is_keyframe) {
   auto empty = std::make_shared<const GaussianSet>();
   if (wants(M4D_LAYER_STATIC)) {
     frame_.layers |= M4D_LAYER_STATIC;
-    if (background_) {
-      frame_.static_layer = background_;
-    } else if (static_known_) {
-      frame_.static_layer = static_;
-    } else {
-      auto unknown = std::make_shared<GaussianSet>();
-      unknown->sh_degree = sequence_.sh_degree;
-      frame_.static_layer = std::move(unknown);
-    }
+    frame_.static_layer = OutputStaticLayer();
+    if (!background_ && static_lost_) frame_.concealed |= M4D_LAYER_STATIC;
   } else {
     frame_.static_layer = empty;
   }
   if (wants(M4D_LAYER_DYNAMIC)) {
     frame_.layers |= M4D_LAYER_DYNAMIC;
     frame_.dynamic_layer = dynamic_;
+    if (dynamic_lost_) {
+      frame_.concealed |= M4D_LAYER_DYNAMIC;
+      if (last_dynamic_out_) frame_.dynamic_layer = last_dynamic_out_;  // frozen
+    }
   } else {
     frame_.dynamic_layer = empty;
   }
+  last_static_out_ = frame_.static_layer;
+  last_dynamic_out_ = frame_.dynamic_layer;
   has_frame_ = true;
+}
+
+// The static layer a frame shows: the caller's, the stream's, or while the stream's is lost
+// the last one output (the previous GOP's; informative, spec 6.8).
+std::shared_ptr<const GaussianSet> Decoder::OutputStaticLayer() const {
+  if (background_) return background_;
+  if (static_lost_ && last_static_out_) return last_static_out_;
+  if (static_known_ && !static_lost_) return static_;
+  auto unknown = std::make_shared<GaussianSet>();
+  unknown->sh_degree = sequence_.sh_degree;
+  return unknown;
 }
 
 }  // namespace m4d

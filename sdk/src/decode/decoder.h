@@ -35,6 +35,7 @@ struct DecodedFrame {
   uint32_t frame_index = 0;
   bool is_keyframe = false;
   uint32_t layers = 0;
+  uint32_t concealed = 0;  // layers lost to damage (spec 6.8): content not the stream's
   std::shared_ptr<const GaussianSet> static_layer;
   std::shared_ptr<const GaussianSet> dynamic_layer;
 };
@@ -57,8 +58,10 @@ class Decoder {
   explicit Decoder(const DecoderOptions& options);
 
   // Decodes one whole packet (header + payload, `size` bytes exactly). The caller must have
-  // taken the previous frame first (HasFrame() false). On error the decoder drops its state
-  // and skips packets until the next SEQUENCE_HEADER.
+  // taken the previous frame first (HasFrame() false). A damaged payload of a layer's packet
+  // loses that layer only (spec 6.8): the packet's frame may still be output, concealed. On
+  // any other error the decoder drops its state and skips packets until the next
+  // SEQUENCE_HEADER.
   Status SendPacket(const uint8_t* data, size_t size);
 
   bool HasFrame() const { return has_frame_; }
@@ -89,8 +92,13 @@ class Decoder {
     kAppearance
   };
 
-  Status Dispatch(const PacketHeader& header, const uint8_t* payload);
+  Status Dispatch(const PacketHeader& header, const uint8_t* payload, bool* layer_error);
   Status CheckOrder(const PacketHeader& header);
+  bool ChecksPayload(uint8_t type) const;
+  bool DecodesPayload(uint8_t type) const;
+  Status DecodeLayerPayload(const PacketHeader& header, const uint8_t* payload);
+  void LoseLayer(uint8_t type);
+  void Advance(const PacketHeader& header);
   Status DecodeSequenceHeader(const PacketHeader& header, const uint8_t* payload);
   Status DecodeKeyframeSet(const uint8_t* payload, size_t size, bool is_static);
   Status DecodeStaticUpdate(const uint8_t* payload, size_t size);
@@ -103,6 +111,7 @@ class Decoder {
                        Buffer<int32_t>* removed, uint32_t* num_removed, GaussianSet* added);
   Status CheckDependentKeyframe(const PacketHeader& header) const;
   void EmitFrame(uint32_t frame_index, bool is_keyframe);
+  std::shared_ptr<const GaussianSet> OutputStaticLayer() const;
   void CountKeyframe(uint32_t frame_index);
   void Reset();
   GaussianSet* MutableDynamicSet();
@@ -118,6 +127,14 @@ class Decoder {
   // False once a static packet was skipped for a caller background: the stream's S is then
   // unknown (empty) until the next SEQUENCE_HEADER (spec 6.6).
   bool static_known_ = true;
+  // Layers lost to a damaged payload (spec 6.8): S until the next SEQUENCE_HEADER, D until the
+  // next KEYFRAME_DYNAMIC that decodes; a lost MLP loses D at the GOP's next frame.
+  bool static_lost_ = false;
+  bool dynamic_lost_ = false;
+  bool mlp_lost_ = false;
+  // The layers of the last frame output: what a lost layer shows meanwhile (informative).
+  std::shared_ptr<const GaussianSet> last_static_out_;
+  std::shared_ptr<const GaussianSet> last_dynamic_out_;
   std::shared_ptr<GaussianSet> dynamic_;  // shared with output frames; copied on write
   std::shared_ptr<const GaussianSet> background_;
   MlpWeights mlp_;

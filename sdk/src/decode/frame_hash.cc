@@ -59,10 +59,13 @@ M4dGaussians GaussianView(const GaussianSet& set) {
 }
 
 void FrameHash(const M4dGaussians& static_layer, const M4dGaussians& dynamic_layer,
-               uint8_t md5[16]) {
+               uint32_t concealed_layers, uint8_t md5[16]) {
+  // A concealed layer hashes as a layer not output (spec 7): its content is the decoder's.
+  M4dGaussians none;
+  std::memset(&none, 0, sizeof(none));
   Md5 hasher;
-  HashLayer(static_layer, &hasher);
-  HashLayer(dynamic_layer, &hasher);
+  HashLayer((concealed_layers & M4D_LAYER_STATIC) ? none : static_layer, &hasher);
+  HashLayer((concealed_layers & M4D_LAYER_DYNAMIC) ? none : dynamic_layer, &hasher);
   hasher.Final(md5);
 }
 
@@ -70,7 +73,8 @@ std::string FrameHashHex(const DecodedFrame& frame) {
   uint8_t digest[16];
   const GaussianSet empty;
   FrameHash(GaussianView(frame.static_layer ? *frame.static_layer : empty),
-            GaussianView(frame.dynamic_layer ? *frame.dynamic_layer : empty), digest);
+            GaussianView(frame.dynamic_layer ? *frame.dynamic_layer : empty), frame.concealed,
+            digest);
   return HexDigest(digest);
 }
 

@@ -14,8 +14,9 @@ namespace m4d {
 // A public-API view of a set (arrays NULL when empty); valid while the set lives.
 M4dGaussians GaussianView(const GaussianSet& set);
 
+// concealed_layers: M4D_LAYER_* bits of layers lost to damage, hashed as not output.
 void FrameHash(const M4dGaussians& static_layer, const M4dGaussians& dynamic_layer,
-               uint8_t md5[16]);
+               uint32_t concealed_layers, uint8_t md5[16]);
 
 // Lowercase hex digest of a decoded frame, as conformance files list it.
 std::string FrameHashHex(const DecodedFrame& frame);
