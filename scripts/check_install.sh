@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Builds the SDK alone (M4D_SDK_ONLY), installs it into a scratch prefix, checks what the
+# Builds the SDK alone (M4D_SDK_ONLY), configured without an install prefix, installs it into a
+# scratch prefix given only at install time (as a packager or `cmake --install --prefix` does),
+# checks that m4d.pc points into that prefix and that the licence is installed, checks what the
 # shared library exports (the public m4d_* API only) and its soname, then builds two
 # out-of-tree consumers against the installed SDK, one through find_package (CMake) and one
 # through pkg-config (a plain Makefile), each linked shared and static, and checks that every
@@ -12,9 +14,24 @@ stream=conformance/streams/synth_sh3_three_gops
 rm -rf "$work"
 prefix=$(realpath -m "$work/prefix")
 cmake -S . -B "$work/sdk" -G Ninja -DCMAKE_BUILD_TYPE=Release -DM4D_WERROR=ON \
-  -DM4D_SDK_ONLY=ON -DCMAKE_INSTALL_PREFIX="$prefix" -DCMAKE_INSTALL_LIBDIR=lib >/dev/null
+  -DM4D_SDK_ONLY=ON -DCMAKE_INSTALL_LIBDIR=lib >/dev/null
 cmake --build "$work/sdk" >/dev/null
-cmake --install "$work/sdk" >/dev/null
+cmake --install "$work/sdk" --prefix "$prefix" >/dev/null
+
+# pkg-config's paths lead into the prefix given at install time, not the configure-time one.
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+for variable in includedir libdir; do
+  dir=$(pkg-config --variable=$variable m4d)
+  case $variable in includedir) want="$prefix/include" ;; libdir) want="$prefix/lib" ;; esac
+  if [ "$(realpath -m "$dir")" != "$want" ]; then
+    echo "check_install: m4d.pc's $variable is '$dir', expected $want" >&2
+    exit 1
+  fi
+done
+if [ ! -s "$prefix/share/doc/m4d/LICENSE" ]; then
+  echo "check_install: LICENSE is not installed (share/doc/m4d/LICENSE)" >&2
+  exit 1
+fi
 
 api_major=$(sed -n 's/^#define M4D_API_VERSION_MAJOR \([0-9]*\).*/\1/p' sdk/include/m4d/m4d.h)
 soname=$(readelf -d "$prefix/lib/libm4d.so" | sed -n 's/.*SONAME.*\[\(.*\)\]/\1/p')
@@ -40,7 +57,7 @@ cmake -S examples/consumers/cmake -B "$work/find_package" -G Ninja \
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/find_package" >/dev/null
 mkdir -p "$work/pkg_config"
-PKG_CONFIG_PATH="$prefix/lib/pkgconfig" make -s -C examples/consumers/make \
+make -s -C examples/consumers/make \
   OUT="$(realpath "$work/pkg_config")" CFLAGS="-O2 -Wall -Wextra -Werror"
 
 for exe in "$work"/find_package/frame_hashes "$work"/find_package/frame_hashes_static \
@@ -50,6 +67,6 @@ for exe in "$work"/find_package/frame_hashes "$work"/find_package/frame_hashes_s
     exit 1
   fi
 done
-version=$(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --modversion m4d)
+version=$(pkg-config --modversion m4d)
 echo "install check: SDK $version (libm4d.so.$api_major, $exported functions exported)," \
-  "find_package and pkg-config consumers, shared and static, decode $stream.m4d bit-exactly"
+  "installed with --prefix only, find_package and pkg-config consumers, shared and static, decode $stream.m4d bit-exactly"

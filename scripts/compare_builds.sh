@@ -22,10 +22,10 @@ shapes=(
 i=0
 for shape in "${shapes[@]}"; do
   # shellcheck disable=SC2086
-  "$release/tools/m4d_synth" -o "$work/s$i.m4d" $shape >/dev/null
+  "$release/tools/m4d_synth" --force -o "$work/s$i.m4d" $shape >/dev/null
   for layers in all static dynamic; do
-    "$release/tools/m4d_decode" -q --layers $layers "$work/s$i.m4d" -o "$work/gcc.md5"
-    "$debug/tools/m4d_decode" -q --layers $layers "$work/s$i.m4d" -o "$work/clang.md5"
+    "$release/tools/m4d_decode" -q --force --layers $layers "$work/s$i.m4d" -o "$work/gcc.md5"
+    "$debug/tools/m4d_decode" -q --force --layers $layers "$work/s$i.m4d" -o "$work/clang.md5"
     if ! cmp -s "$work/gcc.md5" "$work/clang.md5"; then
       echo "compare_builds: stream $i ($shape, layers $layers): hashes differ" >&2
       diff "$work/gcc.md5" "$work/clang.md5" | head >&2

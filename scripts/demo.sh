@@ -16,7 +16,7 @@ m4d=build/release/tools/m4d/m4d
 # `m4d encode default` alone codes all 20 frames with the full short schedule (7000 iterations).
 "$m4d" encode default -o out/default.m4d --force --frames 8 --keyframe-iterations 1000 \
   --views out/default-views "$@"
-build/release/tools/m4d_decode out/default.m4d -o out/default.md5
+build/release/tools/m4d_decode --force out/default.m4d -o out/default.md5
 # The player's view: the SDK decodes and renders the held-out camera with OpenGL ES (headless).
 mkdir -p out/default-play
 build/release/tools/m4d_play out/default.m4d --capture out/default-scene -o out/default-play \

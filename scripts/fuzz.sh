@@ -23,7 +23,7 @@ if [ ! -d "$corpus" ]; then
   seed=1
   for sh in 0 1 2 3; do
     # A leading mode byte, then a small stream (see tests/fuzz/decode_fuzzer.cc).
-    "$fuzz/tools/m4d_synth" -o "$fuzz/seed.m4d" --gops 2 --frames-per-gop 3 --static 60 \
+    "$fuzz/tools/m4d_synth" --force -o "$fuzz/seed.m4d" --gops 2 --frames-per-gop 3 --static 60 \
       --dynamic 40 --sh-degree $sh --motion-fraction 0.001 --seed $seed >/dev/null
     for mode in 0 4 13 22; do
       { printf "\\x$(printf %02x $mode)"; cat "$fuzz/seed.m4d"; } >"$corpus/seed_${sh}_$mode"

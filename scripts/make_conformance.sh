@@ -14,9 +14,9 @@ rm -f "$out"/*.m4d "$out"/*.md5
 
 # record NAME: the expected hashes of conformance/streams/NAME.m4d, every layer choice.
 record() {
-  "$bin/m4d_decode" -q "$out/$1.m4d" -o "$out/$1.md5"
-  "$bin/m4d_decode" -q --layers static "$out/$1.m4d" -o "$out/$1.static.md5"
-  "$bin/m4d_decode" -q --layers dynamic "$out/$1.m4d" -o "$out/$1.dynamic.md5"
+  "$bin/m4d_decode" -q --force "$out/$1.m4d" -o "$out/$1.md5"
+  "$bin/m4d_decode" -q --force --layers static "$out/$1.m4d" -o "$out/$1.static.md5"
+  "$bin/m4d_decode" -q --force --layers dynamic "$out/$1.m4d" -o "$out/$1.dynamic.md5"
 }
 
 # The reference encoder on the built-in scene at 64x48 (6 cameras, 6 frames; an object enters
@@ -59,7 +59,7 @@ for entry in "${encoded[@]}"; do
   record "$name"
 done
 # Foreground-only (spec 2): the adaptive-GOP stream without its KEYFRAME_STATIC packets.
-"$bin/m4d_filter" "$out/enc_adaptive_gop.m4d" "$out/enc_foreground_only.m4d"
+"$bin/m4d_filter" --force "$out/enc_adaptive_gop.m4d" "$out/enc_foreground_only.m4d"
 record enc_foreground_only
 
 # The synthetic stream writer: random Gaussian sets and sparse motion.
@@ -94,7 +94,7 @@ for entry in "${streams[@]}"; do
   args=${entry#*|}
   echo "== $name"
   # shellcheck disable=SC2086
-  "$bin/m4d_synth" -o "$out/$name.m4d" $args | tail -5
+  "$bin/m4d_synth" --force -o "$out/$name.m4d" $args | tail -5
   record "$name"
 done
 # Valid streams at the edges of the rules, edited from a small written stream: frame numbers
@@ -111,9 +111,9 @@ mkdir -p "$invalid"
 rm -f "$invalid"/*.m4d "$invalid"/*.md5
 "$bin/m4d_make_invalid" -o "$invalid"
 for stream in "$invalid"/*.m4d; do
-  "$bin/m4d_decode" -q "$stream" -o "${stream%.m4d}.md5" 2>/dev/null || true
+  "$bin/m4d_decode" -q --force "$stream" -o "${stream%.m4d}.md5" 2>/dev/null || true
 done
 # A damaged KEYFRAME_DYNAMIC payload is no error for a decoder of the static layer alone, which
 # skips that payload unchecked (spec 6.6).
-"$bin/m4d_decode" -q --layers static "$invalid/bad_payload_crc.m4d" -o "$invalid/bad_payload_crc.static.md5"
+"$bin/m4d_decode" -q --force --layers static "$invalid/bad_payload_crc.m4d" -o "$invalid/bad_payload_crc.static.md5"
 (cd "$invalid" && md5sum ./*.m4d >MANIFEST.md5sum)

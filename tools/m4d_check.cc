@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   M4dSettings settings;
   m4d_default_settings(&settings);
   M4dContext* ctx = nullptr;
-  if (m4d_open(&ctx, &settings) < 0) return 2;
+  if (m4d_open(&ctx, &settings) < 0) return 1;
   Checker check;
   size_t pos = 0;
   while (pos < data.size()) {

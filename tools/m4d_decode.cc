@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "existing_output.h"
 #include "m4d/m4d.h"
+#include "number_checks.h"
 #include "usage_exit.h"
 
 namespace {
@@ -24,6 +26,7 @@ struct Options {
   int64_t start_frame = -1;
   int threads = 1;
   bool quiet = false;
+  bool force = false;  // replace an existing --output
 };
 
 void LogToStderr(void*, int level, const char* message) {
@@ -107,16 +110,22 @@ int main(int argc, char** argv) {
   app.add_option("--start-gop", opt.start_gop,
                  "seek: start decoding at this random-access GOP (0-based; dependent GOPs "
                  "are not counted: decoding cannot start there)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   app.add_option("--start-frame", opt.start_frame,
                  "seek: decode from the random-access point at or before this frame index and "
                  "print the frames from it on (m4d_find_random_access)")
-      ->check(CLI::Range(int64_t{0}, int64_t{UINT32_MAX}))
+      ->check(m4d::Within(int64_t{0}, int64_t{UINT32_MAX}))
       ->excludes("--start-gop");
   app.add_option("--threads", opt.threads, "decoder threads (0: every core); output is the same")
-      ->check(CLI::Range(0, 256));
+      ->check(m4d::Within(0, 256));
   app.add_flag("-q,--quiet", opt.quiet, "no summary on stderr");
+  app.add_flag("-f,--force", opt.force, "replace an existing --output (else refused)");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
+  const m4d::Status may_write = m4d::RefuseExistingOutput(opt.output, opt.force);
+  if (!opt.output.empty() && !may_write.ok()) {
+    std::fprintf(stderr, "m4d_decode: %s\n", may_write.message().c_str());
+    return 2;
+  }
 
   std::ifstream file(opt.input, std::ios::binary);
   std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
@@ -124,13 +133,13 @@ int main(int argc, char** argv) {
   if (!file.good() && !file.eof()) {
     std::fprintf(stderr, "m4d_decode: cannot read %s: %s\n", opt.input.c_str(),
                  std::strerror(errno));
-    return 2;
+    return 1;
   }
   FILE* out = stdout;
   if (!opt.output.empty() && !(out = std::fopen(opt.output.c_str(), "w"))) {
     std::fprintf(stderr, "m4d_decode: cannot write %s: %s\n", opt.output.c_str(),
                  std::strerror(errno));
-    return 2;
+    return 1;
   }
 
   M4dSettings settings;
@@ -141,7 +150,7 @@ int main(int argc, char** argv) {
   settings.logger.callback = LogToStderr;
   settings.threads = opt.threads;
   M4dContext* ctx = nullptr;
-  if (m4d_open(&ctx, &settings) < 0) return 2;
+  if (m4d_open(&ctx, &settings) < 0) return 1;
 
   ErrorReport errors;
   int frames = 0, gop = -1, concealed = 0;

@@ -3,12 +3,13 @@
 // glTF with KHR_gaussian_splatting. Each file holds one frame's Gaussians, static layer first.
 //
 //   m4d_export STREAM -o DIR [--frames FIRST[:LAST]] [--layers all|static|dynamic]
-//              [--format ply|glb]
+//              [--format ply|glb] [--force]
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "existing_output.h"
 #include "export/frame_gaussians.h"
 #include "export/gltf_splat_writer.h"
 #include "image/file_bytes.h"
@@ -22,6 +23,7 @@ namespace {
 struct Options {
   std::string input, output_dir, frames, layers = "all", format = "ply";
   uint32_t first = 0, last = UINT32_MAX;
+  bool force = false;
 };
 
 bool ParseFrames(Options* o) {
@@ -50,6 +52,8 @@ bool Export(const Options& o, const M4dFrame& frame, int* written) {
   char name[32];
   std::snprintf(name, sizeof(name), "/frame_%05u.%s", frame.frame_index, o.format.c_str());
   const std::string path = o.output_dir + name;
+  // The folder is created with the first file: an export that writes nothing leaves nothing.
+  if (status.ok() && *written == 0) status = m4d::CheckOutputPath(path);
   if (status.ok()) {
     status =
         o.format == "glb" ? m4d::WriteGaussianGlb(path, set) : m4d::WriteGaussianPly(path, set);
@@ -79,23 +83,28 @@ int main(int argc, char** argv) {
   app.add_option("--format", o.format, "ply: the 3DGS PLY layout; glb: binary glTF")
       ->check(CLI::IsMember({"ply", "glb"}))
       ->capture_default_str();
+  app.add_flag("-f,--force", o.force, "replace existing frame files (else refused)");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
   if (!ParseFrames(&o)) {
     std::fprintf(stderr, "m4d_export: --frames %s is not FIRST, FIRST:LAST or FIRST:\n",
                  o.frames.c_str());
     return 2;
   }
-  std::vector<uint8_t> data;
-  m4d::Status status = m4d::CheckOutputPath(o.output_dir + "/frame_00000." + o.format);
-  if (status.ok()) status = m4d::ReadFileBytes(o.input, SIZE_MAX / 2, &data);
+  m4d::Status status = m4d::RefuseExistingFrames(o.output_dir, o.format, o.first, o.last, o.force);
   if (!status.ok()) {
     std::fprintf(stderr, "m4d_export: %s\n", status.message().c_str());
     return 2;
   }
+  std::vector<uint8_t> data;
+  status = m4d::ReadFileBytes(o.input, SIZE_MAX / 2, &data);
+  if (!status.ok()) {
+    std::fprintf(stderr, "m4d_export: %s\n", status.message().c_str());
+    return 1;
+  }
   M4dSettings settings;
   m4d_default_settings(&settings);
   M4dContext* ctx = nullptr;
-  if (m4d_open(&ctx, &settings) != M4D_OK) return 2;
+  if (m4d_open(&ctx, &settings) != M4D_OK) return 1;
   int written = 0, errors = 0;
   bool ok = true;
   auto drain = [&]() {

@@ -9,18 +9,26 @@
 #include <string>
 #include <vector>
 
+#include "existing_output.h"
 #include "io/atomic_file.h"
 #include "m4d/m4d.h"
 #include "usage_exit.h"
 
 int main(int argc, char** argv) {
   std::string input, output;
+  bool force = false;
   CLI::App app{
       "Write the foreground-only form of a stream (every KEYFRAME_STATIC and STATIC_UPDATE "
       "removed)."};
   app.add_option("input", input, "stream to read")->required()->check(CLI::ExistingFile);
   app.add_option("output", output, "foreground-only stream to write")->required();
+  app.add_flag("-f,--force", force, "replace an existing output (else refused)");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
+  const m4d::Status may_write = m4d::RefuseExistingOutput(output, force);
+  if (!may_write.ok()) {
+    std::fprintf(stderr, "m4d_filter: %s\n", may_write.message().c_str());
+    return 2;
+  }
 
   std::ifstream in(input, std::ios::binary);
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(in)),

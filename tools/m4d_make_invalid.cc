@@ -668,12 +668,15 @@ bool WriteStream(const std::string& path, const Stream& stream, const std::vecto
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string dir = "conformance/invalid";
+  std::string dir;
   CLI::App app{"Write the invalid conformance streams and their expected errors."};
   std::string valid_dir;
-  app.add_option("-o,--output-dir", dir, "where to write them")->capture_default_str();
+  // One of the two is required: nothing is written into a folder nobody named.
+  CLI::Option* out = app.add_option("-o,--output-dir", dir, "where to write them");
   app.add_option("--valid-dir", valid_dir,
-                 "write the valid edge-case streams (edit_*) there instead");
+                 "write the valid edge-case streams (edit_*) there instead")
+      ->excludes(out);
+  app.require_option(1);
   M4D_PARSE_ARGUMENTS(app, argc, argv);
   Stream base, base_v03;
   if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base) || !MakeBase(3, &base_v03)) return 1;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -21,11 +22,14 @@
 #include <vector>
 
 #include "dataset/capture_loader.h"
+#include "existing_output.h"
 #include "image/file_bytes.h"
 #include "image/image.h"
 #include "image/png_io.h"
+#include "io/atomic_file.h"
 #include "m4d/m4d.h"
 #include "m4d/m4d_render.h"
+#include "number_checks.h"
 #include "ply/gaussian_ply.h"
 #include "usage_exit.h"
 #include "video/video_writer.h"
@@ -52,6 +56,7 @@ struct Options {
   int frames = 0;  // 0: all
   double fps = 0;  // 0: the stream's own frame rate
   int sh_degree = 3;
+  bool force = false;  // replace existing PNG frames and MP4
 };
 
 double Ms(Clock::time_point start) {
@@ -342,9 +347,18 @@ class Player {
   ~Player() {
     m4d_renderer_close(&renderer_);
     m4d_close(&decoder_);
+    video_.reset();
+    // An MP4 is renamed into place only once finished: a failed run leaves none.
+    if (!options_.mp4.empty()) std::remove(PartialMp4().c_str());
   }
 
  private:
+  // Beside the MP4, with its extension (FFmpeg picks the container by it).
+  std::string PartialMp4() const {
+    const std::filesystem::path mp4(options_.mp4);
+    return (mp4.parent_path() / (".partial." + mp4.filename().string())).string();
+  }
+
   bool Done() const { return options_.frames > 0 && totals_.frames >= options_.frames; }
 
   bool OpenDecoder(const Options& o, std::string* error) {
@@ -434,13 +448,16 @@ class Player {
     if (!options_.png_dir.empty()) {
       char name[32];
       std::snprintf(name, sizeof(name), "/frame_%05u.png", index);
-      status = m4d::WritePng(options_.png_dir + name, image);
+      const std::string path = options_.png_dir + name;
+      // The folder is created with the first frame: a run that renders nothing leaves nothing.
+      if (totals_.frames == 1) status = m4d::CheckOutputPath(path);
+      if (status.ok()) status = m4d::WritePng(path, image);
     }
     if (status.ok() && !options_.mp4.empty()) {
       if (!video_) {
         m4d::VideoWriterOptions video;
         video.fps = options_.fps > 0 ? options_.fps : StreamFps();
-        status = m4d::VideoWriter::Open(options_.mp4, image.width & ~1, image.height & ~1, video,
+        status = m4d::VideoWriter::Open(PartialMp4(), image.width & ~1, image.height & ~1, video,
                                         &video_);
       }
       if (status.ok()) status = video_->Write(EvenCrop(image));
@@ -459,7 +476,11 @@ class Player {
 
   bool Finish(std::string* error) {
     if (video_) {
-      const m4d::Status status = video_->Finish();
+      m4d::Status status = video_->Finish();
+      if (status.ok() && std::rename(PartialMp4().c_str(), options_.mp4.c_str()) != 0) {
+        status = m4d::Status(M4D_ERR_INVALID_ARG,
+                             "cannot write " + options_.mp4 + ": " + std::strerror(errno));
+      }
       if (!status.ok()) {
         *error = status.message();
         return false;
@@ -499,8 +520,7 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app("Decode an M4D stream and render it along a camera path (PNG frames, MP4)");
   app.add_option("stream", o.stream, "the stream")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--png-dir", o.png_dir, "write frame_NNNNN.png here")
-      ->check(CLI::ExistingDirectory);
+  app.add_option("-o,--png-dir", o.png_dir, "write frame_NNNNN.png here (created if missing)");
   app.add_option("--mp4", o.mp4, "write an MP4 (H.264 when FFmpeg has it)");
   auto* capture = app.add_option("--capture", o.capture, "camera path: a camera of this capture");
   app.add_option("--camera", o.camera, "the capture's camera (default: its held-out one)")
@@ -508,7 +528,7 @@ int main(int argc, char** argv) {
   auto* orbit = app.add_flag("--orbit", o.orbit, "camera path: an orbit around the foreground");
   app.add_option("--orbit-degrees", o.orbit_degrees, "orbit step per frame")->capture_default_str();
   app.add_option("--orbit-distance", o.orbit_distance, "orbit radius (0: 3x the spread)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   app.add_option("--orbit-up", o.orbit_up, "the world's up direction, x y z")
       ->expected(3)
       ->capture_default_str();
@@ -517,9 +537,9 @@ int main(int argc, char** argv) {
   capture->excludes(orbit)->excludes(poses);
   orbit->excludes(poses);
   app.add_option("--width", o.width, "output width (default: the capture's, else 1280)")
-      ->check(CLI::Range(16, 8192));
+      ->check(m4d::Within(16, 8192));
   app.add_option("--height", o.height, "output height (default: the capture's, else 720)")
-      ->check(CLI::Range(16, 8192));
+      ->check(m4d::Within(16, 8192));
   app.add_option("--layers", o.layers, "all, static (background only), dynamic (foreground only)")
       ->check(CLI::IsMember({"all", "static", "dynamic"}))
       ->capture_default_str();
@@ -532,16 +552,25 @@ int main(int argc, char** argv) {
       ->excludes(ply);
   app.add_option("--background-colour", o.background, "colour behind the splats, r g b in 0..1")
       ->expected(3)
-      ->check(CLI::Range(0.0f, 1.0f));
-  app.add_option("--frames", o.frames, "frames to play (0: all)")->check(CLI::NonNegativeNumber);
+      ->check(m4d::Within(0.0f, 1.0f));
+  app.add_option("--frames", o.frames, "frames to play (0: all)")->check(m4d::AtLeast(0));
   app.add_option("--fps", o.fps, "frame rate of the MP4 (default: the stream's)")
-      ->check(CLI::Range(1.0, 240.0));
+      ->check(m4d::Within(1.0, 240.0));
   app.add_option("--sh-degree", o.sh_degree, "largest SH degree evaluated")
-      ->check(CLI::Range(0, 3))
+      ->check(m4d::Within(0, 3))
       ->capture_default_str();
+  app.add_flag("-f,--force", o.force, "replace existing PNG frames and MP4 (else refused)");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
   if (o.png_dir.empty() && o.mp4.empty()) {
     std::fprintf(stderr, "m4d_play: nothing to write: give --png-dir and/or --mp4\n");
+    return 2;
+  }
+  m4d::Status may_write = m4d::RefuseExistingOutput(o.mp4, o.force || o.mp4.empty());
+  if (may_write.ok() && !o.png_dir.empty()) {
+    may_write = m4d::RefuseExistingFrames(o.png_dir, "png", 0, UINT32_MAX, o.force);
+  }
+  if (!may_write.ok()) {
+    std::fprintf(stderr, "m4d_play: %s\n", may_write.message().c_str());
     return 2;
   }
   const float up_length = std::sqrt(o.orbit_up[0] * o.orbit_up[0] + o.orbit_up[1] * o.orbit_up[1] +

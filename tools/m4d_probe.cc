@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
                                   std::istreambuf_iterator<char>());
   if (!file.good() && !file.eof()) {
     std::fprintf(stderr, "m4d_probe: cannot read %s: %s\n", input.c_str(), std::strerror(errno));
-    return 2;
+    return 1;
   }
   Probe probe;
   Run(data, &probe);

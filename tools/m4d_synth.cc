@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,7 +13,10 @@
 #include "common/md5.h"
 #include "common/spec_limits.h"
 #include "decode/frame_hash.h"
+#include "existing_output.h"
+#include "io/atomic_file.h"
 #include "m4d/m4d.h"
+#include "number_checks.h"
 #include "stream/stream_writer.h"
 #include "stream/synthetic_content.h"
 #include "stream/synthetic_edge_cases.h"
@@ -23,7 +25,8 @@
 namespace {
 
 struct Options {
-  std::string output = "synthetic.m4d";
+  std::string output;
+  bool force = false;
   int gops = 3;
   int frames_per_gop = 10;
   int static_count = 20000;
@@ -254,45 +257,45 @@ int CountMatches(const std::vector<uint8_t>& data, const std::vector<std::string
 int main(int argc, char** argv) {
   Options opt;
   CLI::App app{"Write a synthetic M4D stream and verify the decoder reproduces it."};
-  app.add_option("-o,--output", opt.output, "stream file to write");
-  app.add_option("--gops", opt.gops, "number of GOPs")->check(CLI::Range(1, 1000));
+  app.add_option("-o,--output", opt.output, "stream file to write")->required();
+  app.add_option("--gops", opt.gops, "number of GOPs")->check(m4d::Within(1, 1000));
   app.add_option("--frames-per-gop", opt.frames_per_gop, "frames per GOP")
-      ->check(CLI::Range(1, 10000));
+      ->check(m4d::Within(1, 10000));
   app.add_option("--static", opt.static_count, "static Gaussians per keyframe")
-      ->check(CLI::Range(0, 1 << 22));
+      ->check(m4d::Within(0, 1 << 22));
   app.add_option("--dynamic", opt.dynamic_count, "dynamic Gaussians per keyframe")
-      ->check(CLI::Range(0, 1 << 21));
-  app.add_option("--sh-degree", opt.sh_degree, "SH degree")->check(CLI::Range(0, 3));
+      ->check(m4d::Within(0, 1 << 21));
+  app.add_option("--sh-degree", opt.sh_degree, "SH degree")->check(m4d::Within(0, 3));
   app.add_option("--motion-fraction", opt.motion_fraction,
                  "fraction of the motion grid's box covered by motion")
-      ->check(CLI::Range(0.0f, 1.0f));
-  app.add_option("--seed", opt.seed, "random seed");
+      ->check(m4d::Within(0.0f, 1.0f));
+  app.add_option("--seed", opt.seed, "random seed")->check(m4d::AtLeast(0));
   app.add_option("--grid", opt.grid,
                  "motion grid levels as resolution,channels pairs (default: the paper's 32,4,64,4,"
                  "128,2)")
       ->delimiter(',')
-      ->check(CLI::Range(1, 256));
+      ->check(m4d::Within(1, 256));
   app.add_option("--mlp-layers", opt.mlp_layers, "hidden layers of the motion MLP")
-      ->check(CLI::Range(1, 4));
+      ->check(m4d::Within(1, 4));
   app.add_option("--mlp-width", opt.mlp_width, "width of its hidden layers")
-      ->check(CLI::Range(1, 256));
+      ->check(m4d::Within(1, 256));
   app.add_flag("--dependent-gops", opt.dependent_gops,
                "GOPs after the first keep the static set (bitstream 0.3 dependent keyframes)");
   app.add_option("--static-change", opt.static_change,
                  "with --dependent-gops: share of the static set each dependent keyframe "
                  "replaces, plus 3 Gaussians added (0: no STATIC_UPDATE)")
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(m4d::Within(0.0f, 1.0f));
   app.add_option(
          "--bitstream-minor", opt.bitstream_minor,
          "bitstream minor version to write (2: a 0.2 stream, without dependent GOPs; 3: one "
          "rANS state per symbol block; 4: four-component rotations; 5: no codebooks)")
-      ->check(CLI::Range(2, M4D_BITSTREAM_VERSION_MINOR));
+      ->check(m4d::Within(2, M4D_BITSTREAM_VERSION_MINOR));
   app.add_option("--bits", opt.bits, "bits of every Gaussian attribute group (0: defaults)")
-      ->check(CLI::Range(0, 24));
+      ->check(m4d::Within(0, 24));
   app.add_option("--codebook", opt.codebook,
                  "codebook size of the keyframes' log scales, SH DC and higher SH, used in every "
                  "set of at least 32 Gaussians per entry (0: none; bitstream 0.6)")
-      ->check(CLI::Range(0, 4096));
+      ->check(m4d::Within(0, 4096));
   const std::map<std::string, m4d::AttributeCoding> codings = {
       {"smaller", m4d::AttributeCoding::kSmaller},
       {"draco", m4d::AttributeCoding::kDraco},
@@ -304,12 +307,18 @@ int main(int argc, char** argv) {
   app.add_option("--appearance-fraction", opt.appearance_fraction,
                  "share of the dynamic Gaussians whose colour an APPEARANCE changes in each inter "
                  "frame but a GOP's first (0: none; bitstream 0.3)")
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(m4d::Within(0.0f, 1.0f));
   app.add_flag("--edge-cases", opt.edge_cases,
                "dynamic sets, MLPs and motion made of the decoding edge cases of spec 5.4 and "
                "6.3 (its own grid and MLP; --motion-fraction has no effect)")
       ->excludes("--grid", "--mlp-layers", "--mlp-width");
+  app.add_flag("-f,--force", opt.force, "replace an existing stream (else refused)");
   M4D_PARSE_ARGUMENTS(app, argc, argv);
+  const m4d::Status may_write = m4d::RefuseExistingOutput(opt.output, opt.force);
+  if (!may_write.ok()) {
+    std::fprintf(stderr, "m4d_synth: %s\n", may_write.message().c_str());
+    return 2;
+  }
 
   std::vector<uint8_t> bytes;
   std::vector<std::string> hashes;
@@ -317,9 +326,11 @@ int main(int argc, char** argv) {
   if (!WriteStream(opt, &bytes, &hashes)) return 1;
   const double write_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::ofstream(opt.output, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
+  const m4d::Status written = m4d::WriteFileAtomically(opt.output, bytes.data(), bytes.size());
+  if (!written.ok()) {
+    std::fprintf(stderr, "m4d_synth: %s\n", written.message().c_str());
+    return 1;
+  }
 
   double decode_ms = 0;
   const int matches = CountMatches(bytes, hashes, &decode_ms);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command_status.h"
+#include "number_checks.h"
 #include "rd_sweep.h"
 
 namespace m4d {
@@ -128,7 +129,7 @@ void AddAblateCommand(CLI::App* app, int* exit_code) {
                   "rate weights lambda_2, each with the nearest rate point's other settings "
                   "(default: the paper's, r1..r5)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(m4d::Positive());
   std::vector<std::string> names;  // every ablation but the full method, the anchor
   for (const Ablation& a : Ablations(args->fixed_gop)) names.emplace_back(a.name);
   names.erase(names.begin());
@@ -137,7 +138,7 @@ void AddAblateCommand(CLI::App* app, int* exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember(names));
   cmd->add_option("--fixed-gop-length", args->fixed_gop, "GOP length of the fixed-GOP ablation")
-      ->check(CLI::PositiveNumber)
+      ->check(m4d::Positive())
       ->capture_default_str();
   cmd->callback([args, exit_code]() { *exit_code = ReportStatus("ablate", RunAblate(*args)); });
 }

@@ -12,6 +12,7 @@
 
 #include "command_status.h"
 #include "encode_command.h"
+#include "number_checks.h"
 #include "stream_check.h"
 
 namespace m4d {
@@ -137,7 +138,7 @@ void AddBenchCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("-o,--output-dir", args->dir, "stream and bench.json go here")
       ->capture_default_str();
   cmd->add_option("--decode-runs", args->decode_runs, "decode the stream this many times")
-      ->check(CLI::Range(1, 1000))
+      ->check(m4d::Within(1, 1000))
       ->capture_default_str();
   cmd->callback([args, exit_code]() { *exit_code = ReportStatus("bench", RunBench(*args)); });
 }

@@ -6,6 +6,7 @@
 
 #include "dataset/capture_check.h"
 #include "dataset/capture_loader.h"
+#include "number_checks.h"
 #include "synthetic_scene/scene_writer.h"
 #include "train/progress_bar.h"
 
@@ -46,7 +47,7 @@ void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
                    "N3DV, transforms.json, COLMAP or Dynamic3DGaussians directory, or "
                    "'default' for the built-in synthetic scene, 'realistic' for it with the "
                    "flaws of a real capture")
-      ->capture_default_str();
+      ->required();
   command->add_option("--scene-dir", args->scene_dir,
                       "where a built-in scene is generated (default: out/default-scene, "
                       "out/realistic-scene)");
@@ -54,14 +55,14 @@ void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
       ->add_option("--test-camera", args->capture.test_camera,
                    "held-out camera index (-1: none; default: the layout's own held-out cameras, "
                    "e.g. test_meta.json, else camera 0 as N3DV)")
-      ->check(CLI::Range(-1, 1 << 20));
+      ->check(m4d::Within(-1, 1 << 20));
   command->add_option("--downscale", args->capture.downscale, "integer image downscale factor")
-      ->check(CLI::Range(1, 64))
+      ->check(m4d::Within(1, 64))
       ->capture_default_str();
   command->add_option("--first-frame", args->capture.first_frame, "first frame to load")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   command->add_option("--frames", args->capture.max_frames, "frames to load (0: all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   command->add_option("--initial-points", args->capture.initial_points,
                       "COLMAP sparse model or PLY point cloud for initialisation");
   AddSceneEdit(command, "--scene-cameras", &SyntheticSceneOptions::cameras,
@@ -104,6 +105,13 @@ Status OpenCapture(const CaptureArguments& args, Capture* capture) {
                capture->camera_count() ? capture->camera(0, 0).height : 0,
                capture->initial_points.size());
   for (const std::string& note : capture->notes) std::fprintf(stderr, "  note: %s\n", note.c_str());
+  // Fewer frames than asked is no error (a capture's length is seldom known by heart), but it
+  // is said: the report would otherwise look complete.
+  if (args.capture.max_frames > capture->frame_count) {
+    std::fprintf(stderr, "warning: --frames %d, but the capture has %d from frame %d: coding %d\n",
+                 args.capture.max_frames, capture->frame_count, args.capture.first_frame,
+                 capture->frame_count);
+  }
   if (!capture->test_cameras.empty()) {
     std::string names;
     for (int c : capture->test_cameras) names += " " + capture->camera_names[c];

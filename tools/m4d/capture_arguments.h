@@ -17,7 +17,7 @@
 namespace m4d {
 
 struct CaptureArguments {
-  std::string dataset = "default";
+  std::string dataset;    // required: a bare command must not start hours of work
   std::string scene_dir;  // empty: out/<dataset>-scene for a built-in scene
   CaptureOptions capture;
   // What the --scene-* flags change in the built-in scene's options, in order.

@@ -12,10 +12,12 @@
 #include "command_status.h"
 #include "io/atomic_file.h"
 #include "mpi_ranks.h"
+#include "number_checks.h"
 #include "peak_memory.h"
 #include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
+#include "rate_point_name.h"
 #include "sequence_report_output.h"
 #include "strategy_arguments.h"
 #include "stream/frame_rate.h"
@@ -61,18 +63,19 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       cmd->add_option("--lambda", a->lambda,
                       "rate weight lambda_2 of motion estimation; the other settings are those "
                       "of the rate point with the nearest lambda_2")
-          ->check(CLI::NonNegativeNumber)
+          ->check(m4d::AtLeast(0))
           ->capture_default_str();
   cmd->add_option("--rate-point", a->rate_point,
                   "named rate point r1 (fewest bytes) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, "
                   "1e-4, 5e-5, with tau_g and bit depths (README)")
+      ->check(RatePointName())
       ->excludes(lambda);
   cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
-      ->check(CLI::Range(0, 3))
+      ->check(m4d::Within(0, 3))
       ->capture_default_str();
   cmd->add_option("--keyframe-iterations", a->keyframe_iterations,
                   "first keyframe's training (the short schedule scaled; default 7000)")
-      ->check(CLI::PositiveNumber);
+      ->check(m4d::Positive());
   cmd->add_option("--keyframe-ply", a->keyframe_ply,
                   "start from this trained first keyframe (a 3DGS PLY, e.g. from m4d train) "
                   "instead of training it")
@@ -80,80 +83,84 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--max-gaussians", a->max_gaussians,
                   "at most this many Gaussians after densification (keyframes and retraining; "
                   "default: the schedule's 1000000)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(m4d::Within(1, 1000000));
   cmd->add_option("--gaussians-per-pixel", a->gaussians_per_pixel,
                   "at most this many Gaussians per pixel of the training views (keyframes and "
                   "retraining; 0: no such cap; default 0.25)")
-      ->check(CLI::Range(0.0, 64.0));
+      ->check(m4d::Within(0.0, 64.0));
   cmd->add_option("--quantization-aware", a->quantization_aware,
                   "the last N iterations of the first keyframe's training render it as coded "
                   "(default: a quarter of the run; retraining: a quarter of its run; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   AddPruneShareOptions(cmd, "keyframes and retraining; with --keyframe-ply 0 unless given",
                        &a->prune);
   cmd->add_option("--prune-below", a->prune_below,
                   "when densification ends (keyframes and retraining), remove the Gaussians "
                   "whose blending weight summed over the views is below this many pixels "
                   "(default 0.05; 0: none)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(m4d::Within(0.0, 1e6));
   AddStrategyOption(cmd, &a->strategy);
   cmd->add_flag("--random-init", a->random_init,
                 "without initial points, start the first keyframe at random in the part of "
                 "the cameras' box two views see instead of from photo-consistent points");
   cmd->add_option("--retrain-iterations", o.retrain_iterations, "later keyframes' retraining")
-      ->check(CLI::PositiveNumber)
+      ->check(m4d::Positive())
       ->capture_default_str();
   cmd->add_option("--lookahead", o.lookahead_frames, "frames from a keyframe to t1")
-      ->check(CLI::PositiveNumber)
+      ->check(m4d::Positive())
       ->capture_default_str();
   cmd->add_option("--lookahead-step", o.lookahead_step,
                   "frames between the lookahead's fine-tuning steps")
-      ->check(CLI::PositiveNumber)
+      ->check(m4d::Positive())
       ->capture_default_str();
   cmd->add_option("--tau-delta", o.decoupling.thresholds.displacement,
                   "decoupling: projected displacement threshold (our units, see the README)")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--tau-s", o.decoupling.thresholds.scale_change,
                   "decoupling: log-scale change threshold")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--tau-e", o.decoupling.thresholds.error,
                   "decoupling: error threshold of the refinement (mean absolute error in [0, 1])")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--change-support", o.decoupling.thresholds.change_support,
                   "decoupling: share of a Gaussian's blend weight that must lie on pixels changed "
                   "beyond the noise for it to be dynamic (0: the paper's rule)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(m4d::Within(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--motion-iterations", o.motion.iterations, "motion estimation per frame")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--first-motion-iterations", o.first_motion_iterations,
                   "motion estimation of a GOP's first inter frame, which also trains the MLP")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--motion-rate-decay", o.motion_rate_decay,
                   "share of lambda_2 the motion rate weight falls per inter frame of a GOP, "
                   "down to 0.3 of it (0: constant)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(m4d::Within(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--motion-views-per-step", o.motion.views_per_step,
                   "training views averaged in each motion estimation step")
-      ->check(CLI::PositiveNumber)
+      ->check(m4d::Positive())
       ->capture_default_str();
   cmd->add_option("--compensation-iterations", o.compensation.iterations,
                   "compensation training per frame")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--lambda3", a->lambda3,
                   "sparsity weight lambda_3 of compensation (default 5e-5)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   cmd->add_option("--tau-g", a->tau_g,
                   "compensation: view-space gradient above which a Gaussian is replicated "
                   "(default: the rate point's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(m4d::AtLeast(0));
   cmd->add_option("--compensation-min-gain", o.compensation_min_gain,
                   "code a frame's compensation only when it raises the training views' PSNR by "
                   "this many dB (negative: always, as the paper)")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_flag(
       "--no-early-compensation-decision", [&o](int64_t) { o.compensation_early_decision = false; },
@@ -162,38 +169,44 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
   cmd->add_option("--motion-min-gain", o.motion_min_gain,
                   "code a frame's motion only when it raises the training views' PSNR by more "
                   "than this many dB over showing the previous frame again (negative: always)")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--appearance-step", o.motion.appearance_step,
                   "quantization step of the dynamic Gaussians' colour change per inter frame, in "
                   "SH DC units (0: colours stay the keyframe's for the whole GOP, as the paper)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--appearance-min-gain", o.appearance_min_gain,
                   "code a frame's colour change only when it raises the training views' PSNR by "
                   "more than this many dB (negative: always)")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--appearance-min-views", o.appearance_min_views,
                   "train the colour change only with at least this many training views")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_flag("!--no-noise-gap", o.gop.noise_gap,
                 "the quality guard compares with the keyframe's training PSNR itself, not less "
                 "its noise gap");
   cmd->add_option("--gop-threshold", o.gop.threshold, "tau_GOP of the adaptive GOP")
+      ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--gop-psnr-drop", o.gop.max_psnr_drop,
                   "a new GOP when the training views' PSNR falls this many dB below the "
                   "keyframe's (0: off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--fixed-gop", o.gop.fixed_length,
-                  "fixed GOP of this many frames instead of the adaptive GOP");
-  cmd->add_option("--max-gop", o.gop.max_length, "longest GOP")->capture_default_str();
+                  "fixed GOP of this many frames instead of the adaptive GOP")
+      ->check(m4d::AtLeast(0));
+  cmd->add_option("--max-gop", o.gop.max_length, "longest GOP")
+      ->check(m4d::Positive())
+      ->capture_default_str();
   cmd->add_option("--random-access", o.gop.random_access_seconds,
                   "seconds of content between random-access keyframes; a GOP started in between "
                   "keeps the static layer and re-sends the dynamic layer only (0: every GOP is a "
                   "random-access point)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(m4d::Within(0.0, 1e6))
       ->capture_default_str();
   cmd->add_flag(
       "--no-decoupling", [&o](int64_t) { o.ablation.decoupling = false; },
@@ -214,22 +227,22 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "(default: the rate point's)")
       ->expected(6)
       ->delimiter(',')
-      ->check(CLI::Range(1, 24));
+      ->check(m4d::Within(1, 24));
   cmd->add_option("--compensation-bits", a->compensation_bits,
                   "compensated Gaussians' bits: position,scale,rotation,opacity,color,sh "
                   "(default: the rate point's)")
       ->expected(6)
       ->delimiter(',')
-      ->check(CLI::Range(1, 24));
+      ->check(m4d::Within(1, 24));
   cmd->add_option("--keyframe-codebooks", a->keyframe_codebooks,
                   "keyframe Gaussians' codebook sizes: scale,color,sh (0: scalar values; "
                   "default: the rate point's)")
       ->expected(3)
       ->delimiter(',')
-      ->check(CLI::Range(0, 4096));
+      ->check(m4d::Within(0, 4096));
   AddRateWeightOption(cmd, &a->keyframe_rate);
-  cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--seed", o.seed, "random seed")->capture_default_str();
+  cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(m4d::AtLeast(0));
+  cmd->add_option("--seed", o.seed, "random seed")->check(m4d::AtLeast(0))->capture_default_str();
 }
 
 namespace {
@@ -632,21 +645,22 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
                   "code the frames in chunks of this many, each from a random-access keyframe, "
                   "checkpointed and spread over the ranks of an MPI job (default under MPI: the "
                   "frames over the ranks)")
-      ->check(CLI::PositiveNumber);
+      ->check(m4d::Positive());
   cmd->add_option("--checkpoint-dir", args->checkpoint_dir,
                   "finished chunks, kept for a resumed run (default: the stream's name + "
                   ".chunks; under MPI on a file system every rank sees)");
   cmd->add_option("--max-chunks", args->max_chunks,
                   "stop after coding this many chunks (per rank); the same command resumes")
-      ->check(CLI::PositiveNumber);
+      ->check(m4d::Positive());
   auto overwrite = std::make_shared<bool>(false);
   cmd->add_flag("-f,--force", *overwrite, "replace an existing stream (else refused)");
   cmd->callback([args, overwrite, exit_code]() {
     std::error_code ec;
     if (!*overwrite && std::filesystem::is_regular_file(args->output, ec)) {
-      *exit_code = ReportStatus(
-          "encode", Status(M4D_ERR_INVALID_ARG,
-                           args->output + " exists: give --force to replace it, or another -o"));
+      ReportStatus("encode",
+                   Status(M4D_ERR_INVALID_ARG,
+                          args->output + " exists: give --force to replace it, or another -o"));
+      *exit_code = 2;  // found before any work, from the command line
       return;
     }
     SequenceReport report;

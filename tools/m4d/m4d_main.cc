@@ -21,7 +21,6 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"m4d: motion-decoupled 4D Gaussian video codec, reference encoder"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("m4d ") + m4d_version());
   int exit_code = 0;
   const m4d::Status ranks = m4d::StartRanks(&argc, &argv);
   if (!ranks.ok()) {

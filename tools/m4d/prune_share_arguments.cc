@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "number_checks.h"
 #include "train/progress_bar.h"
 
 namespace m4d {
@@ -63,12 +64,12 @@ void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArgumen
               "blending weight; 'auto' (the default) holds one training view out and takes the "
               "largest of 0.1, 0.03 and 0.01 that costs it at most --prune-max-loss dB per "
               "halving of the keyframe's bytes, else 0 (0 with fewer than 6 training views)")
-      ->check(CLI::IsMember({"auto"}) | CLI::Range(0.0, 0.99));
+      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.0, 0.99));
   command
       ->add_option("--prune-max-loss", args->max_loss_per_halving_db,
                    "dB of the held-out training views an automatic prune share may cost per "
                    "halving of the keyframe's bytes")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(m4d::Within(0.0, 10.0))
       ->capture_default_str();
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "number_checks.h"
 #include "train/progress_bar.h"
 
 namespace m4d {
@@ -56,7 +57,7 @@ void AddRateWeightOption(CLI::App* command, RateWeightArguments* args) {
           "the rate point's, 0); 'auto' holds training views out as --prune-share auto does and "
           "takes the largest of 1e-3 and 3e-4 that costs them at most --prune-max-loss dB per "
           "halving of the keyframe's bytes, else 0")
-      ->check(CLI::IsMember({"auto"}) | CLI::Range(0.0, 1e3));
+      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.0, 1e3));
 }
 
 Status ResolveRateWeight(const Capture& capture, int frame, const KeyframeTrainingOptions& options,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command_status.h"
+#include "number_checks.h"
 #include "rd_sweep.h"
 
 namespace m4d {
@@ -137,7 +138,7 @@ void AddRdCommand(CLI::App* app, int* exit_code) {
                   "rate weights lambda_2, each with the nearest rate point's other settings "
                   "(default: the paper's, r1..r5)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(m4d::Positive());
   cmd->add_option("--baselines", args->baselines,
                   "static: every frame trained and coded on its own, at each rate point's "
                   "keyframe bits; dynamic: every Gaussian dynamic, over the lambdas; none")

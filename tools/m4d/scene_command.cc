@@ -6,6 +6,7 @@
 #include <string>
 
 #include "command_status.h"
+#include "number_checks.h"
 #include "synthetic_scene/scene_writer.h"
 #include "train/progress_bar.h"
 
@@ -53,8 +54,9 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<Arguments>();
   CLI::App* cmd = app->add_subcommand("scene", "write the built-in synthetic scene");
   SyntheticSceneOptions& s = args->scene;
-  cmd->add_option("-o,--output", args->output,
-                  "directory (default: out/default-scene, or out/realistic-scene)");
+  // Required: a bare command writes nothing (encode and train generate a built-in scene
+  // themselves when they need one).
+  cmd->add_option("-o,--output", args->output, "directory to write the scene into")->required();
   cmd->add_flag_callback(
       "--realistic", [args]() { args->scene = SyntheticSceneOptions::Realistic(); },
       "the realistic preset: every flaw below on, a sparse rig of 4 cameras; the options "
@@ -70,12 +72,11 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
                   "frame where the lamp changes the background (-1: never)")
       ->capture_default_str();
   cmd->add_option("--points", s.points, "initial points")->capture_default_str();
-  cmd->add_option("--seed", s.seed, "layout, texture and realism seed")->capture_default_str();
+  cmd->add_option("--seed", s.seed, "layout, texture and realism seed")
+      ->check(m4d::AtLeast(0))
+      ->capture_default_str();
   AddRealismOptions(cmd, &s.realism);
-  cmd->callback([args, cmd, exit_code]() {
-    if (args->output.empty()) {
-      args->output = cmd->count("--realistic") > 0 ? "out/realistic-scene" : "out/default-scene";
-    }
+  cmd->callback([args, exit_code]() {
     const auto start = std::chrono::steady_clock::now();
     Status status = WriteSyntheticScene(args->scene, args->output, [](int done, int count) {
       ShowStatus(stderr, "rendering frame " + std::to_string(done) + "/" + std::to_string(count));

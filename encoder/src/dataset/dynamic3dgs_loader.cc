@@ -7,6 +7,7 @@
 
 #include "dataset/file_listing.h"
 #include "dataset/image_file_source.h"
+#include "dataset/json_object.h"
 #include "dataset/npz_archive.h"
 #include "image/file_bytes.h"
 
@@ -101,8 +102,8 @@ struct MetaCameras {
 Status ParseMetaFile(const std::string& dir, const char* file, MetaCameras* meta) {
   std::vector<uint8_t> bytes;
   M4D_RETURN_IF_ERROR(ReadFileBytes(dir + "/" + file, kMaxJsonBytes, &bytes));
-  const Json root = Json::parse(bytes.begin(), bytes.end(), nullptr, false);
-  if (root.is_discarded() || !root.is_object()) return Invalid("not a JSON object");
+  Json root;
+  M4D_RETURN_IF_ERROR(ParseJsonObject(dir + "/" + file, bytes, &root));
   int width, height;
   M4D_RETURN_IF_ERROR(ParseSize(root, "w", &width));
   M4D_RETURN_IF_ERROR(ParseSize(root, "h", &height));

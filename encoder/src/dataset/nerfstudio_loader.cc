@@ -9,6 +9,7 @@
 
 #include "dataset/file_listing.h"
 #include "dataset/image_file_source.h"
+#include "dataset/json_object.h"
 #include "dataset/undistorting_frame_source.h"
 #include "image/file_bytes.h"
 #include "ply/point_cloud_ply.h"
@@ -256,11 +257,7 @@ Status CheckEveryViewOnce(const std::vector<View>& views, int frames,
 Status ReadJson(const std::string& path, Json* json) {
   std::vector<uint8_t> bytes;
   M4D_RETURN_IF_ERROR(ReadFileBytes(path, kMaxJsonBytes, &bytes));
-  *json = Json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
-  if (json->is_discarded() || !json->is_object()) {
-    return Status(M4D_ERR_INVALID_ARG, "'" + path + "' is not a JSON object");
-  }
-  return Status::Ok();
+  return ParseJsonObject(path, bytes, json);
 }
 
 std::string ResolvePath(const std::string& dir, const std::string& file) {

@@ -17,7 +17,9 @@ struct FileCloser {
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 Status IoError(const std::string& what, const std::string& path) {
-  return Status(M4D_ERR_INVALID_ARG, "cannot " + what + " '" + path + "': " + std::strerror(errno));
+  // The public error codes have none for I/O; the message says it.
+  return Status(M4D_ERR_INVALID_ARG,
+                "cannot " + what + " '" + path + "': " + std::strerror(errno) + " (I/O error)");
 }
 
 }  // namespace

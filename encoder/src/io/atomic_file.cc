@@ -12,7 +12,9 @@ namespace m4d {
 namespace {
 
 Status IoError(const std::string& what, const std::string& path, int error) {
-  return Status(M4D_ERR_INVALID_ARG, "cannot " + what + " '" + path + "': " + std::strerror(error));
+  // The public error codes have none for I/O; the message says it.
+  return Status(M4D_ERR_INVALID_ARG,
+                "cannot " + what + " '" + path + "': " + std::strerror(error) + " (I/O error)");
 }
 
 // A name beside the target, unique to this process.
