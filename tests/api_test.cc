@@ -23,7 +23,7 @@ TestStream SmallStream() {
 }
 
 TEST(Api, VersionAndErrorStrings) {
-  EXPECT_STREQ(m4d_version(), "0.8.0");  // M4D_VERSION_* of m4d.h
+  EXPECT_STREQ(m4d_version(), "0.9.0");  // M4D_VERSION_* of m4d.h
   std::set<std::string> seen;
   for (int code = 0; code >= -7; --code) {
     ASSERT_NE(m4d_error_string(code), nullptr);

@@ -287,6 +287,7 @@ struct Walk {
     mlp_layers = static_cast<int>(r->U8());
     Add("mlp_hidden_layers=" + std::to_string(mlp_layers));
     if (r->U16() == 256) Add("mlp_width=256");
+    if (version_minor >= 9) Add("up_axis=" + std::to_string(r->U8()));
   }
 
   void Mlp(Reader* r) {

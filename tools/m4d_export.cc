@@ -1,6 +1,8 @@
 // m4d_export: decoded frames of an M4D stream as files other tools open: the 3DGS PLY layout
 // of the reference implementation (SuperSplat and the reference viewers read it), or binary
 // glTF with KHR_gaussian_splatting. Each file holds one frame's Gaussians, static layer first.
+// Each format gets the orientation its readers expect: the stream's up axis (spec 4.1;
+// -y when the stream does not state it) becomes -y in PLY (3DGS' OpenCV axes) and +y in glTF.
 //
 //   m4d_export STREAM -o DIR [--frames FIRST[:LAST]] [--layers all|static|dynamic]
 //              [--format ply|glb] [--force]
@@ -10,8 +12,10 @@
 #include <vector>
 
 #include "existing_output.h"
+#include "export/axis_rotation.h"
 #include "export/frame_gaussians.h"
 #include "export/gltf_splat_writer.h"
+#include "export/turn_gaussians.h"
 #include "image/file_bytes.h"
 #include "io/atomic_file.h"
 #include "m4d/m4d.h"
@@ -41,8 +45,9 @@ bool ParseFrames(Options* o) {
   return o->first <= o->last;
 }
 
-// Writes one decoded frame; false (with a message) on failure.
-bool Export(const Options& o, const M4dFrame& frame, int* written) {
+// Writes one decoded frame in the orientation of its format; false (with a message) on
+// failure.
+bool Export(const Options& o, const M4dFrame& frame, int up_axis, int* written) {
   if (frame.frame_index < o.first || frame.frame_index > o.last) return true;
   const uint32_t layers = o.layers == "static"    ? M4D_LAYER_STATIC
                           : o.layers == "dynamic" ? M4D_LAYER_DYNAMIC
@@ -52,11 +57,19 @@ bool Export(const Options& o, const M4dFrame& frame, int* written) {
   char name[32];
   std::snprintf(name, sizeof(name), "/frame_%05u.%s", frame.frame_index, o.format.c_str());
   const std::string path = o.output_dir + name;
+  const bool glb = o.format == "glb";
+  if (status.ok() && glb && set.size() == 0) {
+    std::fprintf(stderr,
+                 "m4d_export: frame %u: no Gaussians in the %s layer%s; a glTF file cannot hold "
+                 "an empty point set (PLY can: --format ply)\n",
+                 frame.frame_index, o.layers.c_str(), o.layers == "all" ? "s" : "");
+    return false;
+  }
   // The folder is created with the first file: an export that writes nothing leaves nothing.
   if (status.ok() && *written == 0) status = m4d::CheckOutputPath(path);
   if (status.ok()) {
-    status =
-        o.format == "glb" ? m4d::WriteGaussianGlb(path, set) : m4d::WriteGaussianPly(path, set);
+    m4d::TurnGaussians(glb ? m4d::GltfFrame(up_axis) : m4d::PlyFrame(up_axis), &set);
+    status = glb ? m4d::WriteGaussianGlb(path, set) : m4d::WriteGaussianPly(path, set);
   }
   if (!status.ok()) {
     std::fprintf(stderr, "m4d_export: frame %u: %s\n", frame.frame_index, status.message().c_str());
@@ -80,7 +93,10 @@ int main(int argc, char** argv) {
   app.add_option("--layers", o.layers, "layers in each file")
       ->check(CLI::IsMember({"all", "static", "dynamic"}))
       ->capture_default_str();
-  app.add_option("--format", o.format, "ply: the 3DGS PLY layout; glb: binary glTF")
+  app.add_option("--format", o.format,
+                 "ply: the 3DGS PLY layout, the stream's up as -y (OpenCV axes, as the reference "
+                 "tools read it); glb: binary glTF, up +y. A stream that does not state its up "
+                 "axis (before bitstream 0.9) is taken as -y up")
       ->check(CLI::IsMember({"ply", "glb"}))
       ->capture_default_str();
   app.add_flag("-f,--force", o.force, "replace existing frame files (else refused)");
@@ -109,8 +125,11 @@ int main(int argc, char** argv) {
   bool ok = true;
   auto drain = [&]() {
     M4dFrame frame;
+    M4dStreamInfo info;
+    const int up_axis =
+        m4d_get_stream_info(ctx, &info) == M4D_OK ? static_cast<int>(info.up_axis) : 0;
     while (m4d_get_frame(ctx, &frame) == M4D_OK) {
-      ok = Export(o, frame, &written) && ok;
+      ok = Export(o, frame, up_axis, &written) && ok;
       m4d_frame_unref(&frame);
     }
   };

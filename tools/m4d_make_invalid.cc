@@ -335,7 +335,7 @@ struct Case {
 
 // Payload offsets of SEQUENCE_HEADER (spec 4.1, three grid levels): 0 version_major,
 // 1 version_minor, 2 profile, 3 sh_degree, 16 num_levels, 17.. channels, 20.. resolutions
-// (u16), 26 mlp_hidden_layers, 27 mlp_hidden_width (u16).
+// (u16), 26 mlp_hidden_layers, 27 mlp_hidden_width (u16), 29 up_axis (0.9).
 std::function<void(Stream*, std::vector<uint8_t>*)> SetHeaderByte(size_t packet, size_t offset,
                                                                   uint8_t value, bool fix = true) {
   return [=](Stream* s, std::vector<uint8_t>*) {
@@ -400,6 +400,8 @@ std::vector<Case> Cases() {
          (*s)[kSeq][24 + 28] = 1;
          FixCrcs(&(*s)[kSeq]);
        }},
+      {"up_axis_out_of_range", "M4D_ERR_BITSTREAM", "up_axis 7 (0..6 are defined)",
+       SetPayloadByte(kSeq, 29, 7)},
       {"keyframe_dynamic_missing", "M4D_ERR_BITSTREAM",
        "a keyframe's KEYFRAME_DYNAMIC missing (MLP_WEIGHTS follows KEYFRAME_STATIC)",
        [](Stream* s, std::vector<uint8_t>*) { s->erase(s->begin() + kDynamic); }},

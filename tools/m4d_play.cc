@@ -46,8 +46,9 @@ struct Options {
   bool orbit = false;
   float orbit_degrees = 2.0f;   // per frame
   float orbit_distance = 0.0f;  // 0: three times the dynamic layer's spread
-  // The world's up direction: COLMAP, N3DV and the built-in scene keep OpenCV's y down.
-  std::vector<float> orbit_up = {0, -1, 0};
+  // The world's up direction; empty: the stream's up_axis, or -y (OpenCV's camera axes, which
+  // COLMAP worlds often follow) when the stream does not state one.
+  std::vector<float> orbit_up;
   std::string poses;
   int width = 0, height = 0;  // 0: the capture camera's size, else 1280x720
   std::string layers = "all";
@@ -157,7 +158,8 @@ M4dRenderCamera LookAt(int width, int height, float focal, const float eye[3],
   }
   len = std::sqrt(len);
   for (float& v : z) v /= len;
-  const float up[3] = {-world_up[0], -world_up[1], -world_up[2]};  // image y points down
+  // x = z cross up, then y = z cross x = (z.up) z - up: image y (down) is the world's down.
+  const float* up = world_up;
   float x[3] = {z[1] * up[2] - z[2] * up[1], z[2] * up[0] - z[0] * up[2],
                 z[0] * up[1] - z[1] * up[0]};
   float xl = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
@@ -189,8 +191,10 @@ class CameraPath {
     return true;  // orbit, set up from the first frame
   }
 
-  M4dRenderCamera At(int index, const M4dFrame& frame) {
+  // up_axis: the stream's (M4dUpAxis), used when --orbit-up did not say.
+  M4dRenderCamera At(int index, const M4dFrame& frame, int up_axis) {
     if (!fixed_.empty()) return fixed_[std::min<size_t>(index, fixed_.size() - 1)];
+    if (options_.orbit_up.empty()) options_.orbit_up = StreamUp(up_axis);
     if (!orbit_ready_) SetUpOrbit(frame);
     const float angle = options_.orbit_degrees * 3.14159265f / 180.0f * index;
     // A circle in the plane through the centre perpendicular to `up`, lifted by 0.3 distance.
@@ -275,6 +279,15 @@ class CameraPath {
     b[0] = n[1] * a[2] - n[2] * a[1];
     b[1] = n[2] * a[0] - n[0] * a[2];
     b[2] = n[0] * a[1] - n[1] * a[0];
+  }
+
+  static std::vector<float> StreamUp(int up_axis) {
+    std::vector<float> up = {0, -1, 0};  // not stated: OpenCV's axes
+    if (up_axis >= M4D_UP_POS_X && up_axis <= M4D_UP_NEG_Z) {
+      up = {0, 0, 0};
+      up[(up_axis - 1) / 2] = up_axis % 2 == 1 ? 1.0f : -1.0f;
+    }
+    return up;
   }
 
   // The orbit circles the mean of the dynamic layer (or of everything) at three times its
@@ -420,7 +433,7 @@ class Player {
 
   bool RenderFrame(const M4dFrame& frame, double decode_ms, std::string* error) {
     const Clock::time_point start = Clock::now();
-    const M4dRenderCamera camera = path_.At(totals_.frames, frame);
+    const M4dRenderCamera camera = path_.At(totals_.frames, frame, StreamUpAxis());
     std::vector<uint8_t> rgb(static_cast<size_t>(camera.width) * camera.height * 3);
     if (m4d_renderer_upload(renderer_, &frame, M4D_LAYER_ALL) != M4D_OK ||
         m4d_renderer_draw(renderer_, &camera) != M4D_OK ||
@@ -498,6 +511,12 @@ class Player {
     return true;
   }
 
+  // The up axis the stream states (M4D_UP_UNKNOWN before 0.9), read once a frame is decoded.
+  int StreamUpAxis() const {
+    M4dStreamInfo info;
+    return m4d_get_stream_info(decoder_, &info) == M4D_OK ? static_cast<int>(info.up_axis) : 0;
+  }
+
   // The frame rate the stream declares (its SEQUENCE_HEADER), read once a frame is decoded.
   double StreamFps() const {
     M4dStreamInfo info;
@@ -529,9 +548,10 @@ int main(int argc, char** argv) {
   app.add_option("--orbit-degrees", o.orbit_degrees, "orbit step per frame")->capture_default_str();
   app.add_option("--orbit-distance", o.orbit_distance, "orbit radius (0: 3x the spread)")
       ->check(m4d::AtLeast(0));
-  app.add_option("--orbit-up", o.orbit_up, "the world's up direction, x y z")
-      ->expected(3)
-      ->capture_default_str();
+  app.add_option("--orbit-up", o.orbit_up,
+                 "the world's up direction, x y z (default: the axis the stream states, else "
+                 "0 -1 0, OpenCV's y down)")
+      ->expected(3);
   auto* poses = app.add_option("--poses", o.poses, "camera path: a file of poses, one per line")
                     ->check(CLI::ExistingFile);
   capture->excludes(orbit)->excludes(poses);
@@ -573,13 +593,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "m4d_play: %s\n", may_write.message().c_str());
     return 2;
   }
-  const float up_length = std::sqrt(o.orbit_up[0] * o.orbit_up[0] + o.orbit_up[1] * o.orbit_up[1] +
-                                    o.orbit_up[2] * o.orbit_up[2]);
-  if (!(up_length > 1e-6f)) {
-    std::fprintf(stderr, "m4d_play: --orbit-up must not be zero\n");
-    return 2;
+  if (!o.orbit_up.empty()) {
+    const float up_length =
+        std::sqrt(o.orbit_up[0] * o.orbit_up[0] + o.orbit_up[1] * o.orbit_up[1] +
+                  o.orbit_up[2] * o.orbit_up[2]);
+    if (!(up_length > 1e-6f)) {
+      std::fprintf(stderr, "m4d_play: --orbit-up must not be zero\n");
+      return 2;
+    }
+    for (float& v : o.orbit_up) v /= up_length;
   }
-  for (float& v : o.orbit_up) v /= up_length;
   if ((o.width > 0) != (o.height > 0)) {
     std::fprintf(stderr, "m4d_play: give both --width and --height\n");
     return 2;

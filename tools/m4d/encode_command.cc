@@ -10,6 +10,7 @@
 
 #include "chunked_encode.h"
 #include "command_status.h"
+#include "dataset/up_axis_estimate.h"
 #include "io/atomic_file.h"
 #include "mpi_ranks.h"
 #include "number_checks.h"
@@ -395,6 +396,17 @@ Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOp
   return Status::Ok();
 }
 
+// --up, or the capture cameras' up with "auto" (said on stdout: players and exporters turn
+// the content by it).
+Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options) {
+  M4D_RETURN_IF_ERROR(ParseUpAxis(up, &options->up_axis));
+  if (options->up_axis != kUpAxisAuto) return Status::Ok();
+  options->up_axis = EstimateUpAxis(capture.cameras);
+  std::printf("up axis %s (the cameras' mean up; --up to state another)\n",
+              UpAxisName(options->up_axis).c_str());
+  return Status::Ok();
+}
+
 std::string ReportPath(const EncodeArguments& args) {
   return args.json.empty() ? args.output + ".json" : args.json;
 }
@@ -593,6 +605,7 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   Capture capture;
   M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
   M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options));
+  M4D_RETURN_IF_ERROR(ChooseUpAxis(args.up, capture, &options));
   M4D_RETURN_IF_ERROR(CheckViewsBeforeTraining(capture, options.first_frame, options.frame_count));
   AutomaticChoices choices;
   M4D_RETURN_IF_ERROR(ResolveAutomaticChoices(args, capture, &options, &choices));
@@ -637,6 +650,12 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--fps", args->fps,
                   "frame rate written into the stream: 30, 29.97 or 30000/1001 (default: the "
                   "capture's, else 30)");
+  cmd->add_option("--up", args->up,
+                  "the world's up axis the stream states, for players and exporters: +x, -x, "
+                  "+y, -y, +z, -z, none, or auto: the capture cameras' mean up, snapped to an "
+                  "axis")
+      ->check(CLI::IsMember({"auto", "none", "+x", "-x", "+y", "-y", "+z", "-z"}))
+      ->capture_default_str();
   cmd->add_option("--json", args->json, "report file (default: the stream's name + .json)");
   cmd->add_option("--views", args->views,
                   "write the held-out view, its decoded render and their difference (x4), one PNG "

@@ -41,10 +41,11 @@ struct EncodeArguments {
   std::vector<int> keyframe_codebooks;  // scale, color, sh codebook sizes (empty: the point's)
   RateWeightArguments keyframe_rate;    // lambda_k of keyframe training
   std::string output = "out/default.m4d";
-  std::string json;      // default: output + ".json"
-  std::string views;     // held-out view beside its render, one PNG per frame, here ('' to skip)
-  std::string fps;       // frame rate override ("30", "29.97", "30000/1001"); '' : the capture's
-  int chunk_frames = 0;  // chunked encoding (chunked_encode.h): frames per chunk (0: none)
+  std::string json;         // default: output + ".json"
+  std::string views;        // held-out view beside its render, one PNG per frame, here ('' to skip)
+  std::string fps;          // frame rate override ("30", "29.97", "30000/1001"); '' : the capture's
+  std::string up = "auto";  // the world's up axis the stream states (ParseUpAxis)
+  int chunk_frames = 0;     // chunked encoding (chunked_encode.h): frames per chunk (0: none)
   std::string checkpoint_dir;  // its checkpoints (default: output + ".chunks")
   int max_chunks = 0;          // stop after coding this many chunks (0: no limit)
   // Frame -> model trained earlier, for --independent-frames (empty: train each frame).

@@ -49,6 +49,8 @@ export interface M4dStreamInfo {
   randomAccessGops: number;
   lastKeyframeIndex: number;
   lastRandomAccessIndex: number;
+  /** The world's up as a unit axis vector, or null when the stream does not state it. */
+  upAxis: [number, number, number] | null;
 }
 
 /** Damage met so far. Codes are M4D_ERR_* values, or -100 ('TRUNCATED'). */

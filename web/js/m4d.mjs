@@ -28,6 +28,10 @@ const ERROR_NAMES = {
 export function errorCodeName(code) {
   return code === 0 ? '' : ERROR_NAMES[code] || `error ${code}`;
 }
+// M4dStreamInfo.up_axis (bitstream-spec 4.1): the world axis that is up, as a unit vector;
+// null when the stream does not state it (before bitstream 0.9).
+const UP_AXES = [null, [1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
+
 const TRUNCATED = -100;  // m4dw_stream_last_error_code: the stream ends inside a packet or a frame
 
 // Loads the module. options.wasmBinary (bytes of m4d_wasm.wasm) skips fetching it; Node.js
@@ -48,7 +52,7 @@ export class M4d {
     this.wasm = wasm;
   }
 
-  // The SDK's version string, e.g. "0.8.0".
+  // The SDK's version string, e.g. "0.9.0".
   version() {
     return this.wasm.UTF8ToString(this.wasm._m4d_version());
   }
@@ -187,12 +191,13 @@ export class M4dDecoder {
   streamInfo() {
     const context = this.wasm._m4dw_stream_context(this.live());
     if (this.wasm._m4d_get_stream_info(context, this.scratch) < 0) return null;
-    const u = this.wasm.HEAPU32.subarray(this.scratch >> 2, (this.scratch >> 2) + 14);
+    const u = this.wasm.HEAPU32.subarray(this.scratch >> 2, (this.scratch >> 2) + 15);
     return {
       bitstreamVersion: `${u[0]}.${u[1]}`, profile: u[2], shDegree: u[3],
       fps: u[5] ? u[4] / u[5] : 0, fpsNum: u[4], fpsDen: u[5], numFrames: u[6],
       staticLayerCoded: (u[7] & 1) !== 0, framesDecoded: u[8], gops: u[9],
       randomAccessGops: u[10], lastKeyframeIndex: u[11], lastRandomAccessIndex: u[12],
+      upAxis: UP_AXES[u[13]] ?? null,
     };
   }
 

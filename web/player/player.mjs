@@ -12,7 +12,8 @@
 //   width, height    drawing size (default 1280x720); autoplay=0 starts paused
 //
 // The orbit camera circles the first frame's dynamic layer as `m4d_play --orbit` does (the
-// world's up is -y, OpenCV's convention): drag to turn it, wheel to move closer.
+// world's up is the one the stream states, else -y, OpenCV's convention): drag to turn it,
+// wheel to move closer.
 const params = new URLSearchParams(location.search);
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
@@ -106,7 +107,7 @@ const normalize = (a) => { const l = Math.hypot(...a); return a.map((v) => v / l
 // A pinhole camera of the canvas size looking from eye at target (m4d_play's LookAt).
 function lookAt(eye, target, up) {
   const z = normalize(sub(target, eye));
-  const x = normalize(cross(z, up.map((v) => -v)));
+  const x = normalize(cross(z, up));  // then y = z x x: the image's down is the world's
   const y = cross(z, x);
   const rotation = [...x, ...y, ...z];
   const translation = [0, 1, 2].map((r) => -(rotation[3 * r] * eye[0] + rotation[3 * r + 1] * eye[1] + rotation[3 * r + 2] * eye[2]));
@@ -129,9 +130,9 @@ function setUpOrbit(frame) {
 
 function orbitCamera() {
   const { yaw, pitch, zoom, centre, distance } = state.orbit;
-  const up = [0, -1, 0];
-  // m4d_play's Perpendiculars(up): a = up x (1, 0, 0), b = up x a.
-  const a = normalize(cross(up, [1, 0, 0]));
+  const up = decoder.streamInfo()?.upAxis ?? [0, -1, 0];
+  // m4d_play's Perpendiculars(up): a = up x (1, 0, 0) (x (0, 1, 0) when up is along x), b = up x a.
+  const a = normalize(cross(up, Math.abs(up[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0]));
   const b = cross(up, a);
   const d = distance * zoom;
   const lift = 0.3 + Math.sin(pitch);

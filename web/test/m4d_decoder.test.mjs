@@ -127,6 +127,7 @@ test('reports the stream information', () => {
   assert.equal(info.gops, 3);
   assert.equal(info.randomAccessGops, 3);
   assert.equal(info.lastKeyframeIndex, 8);
+  assert.equal(info.upAxis, null);  // the synthetic writer states no up axis
   decoder.close();
 });
 

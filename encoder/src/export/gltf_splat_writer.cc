@@ -4,6 +4,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "export/srgb.h"
 #include "io/atomic_file.h"
 
 namespace m4d {
@@ -12,7 +13,8 @@ namespace {
 constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A;
 constexpr uint32_t kChunkBin = 0x004E4942;
-constexpr int kFloat = 5126;  // accessor componentType
+constexpr int kFloat = 5126;         // accessor componentType
+constexpr int kArrayBuffer = 34962;  // bufferView target of vertex attributes
 constexpr float kShC0 = 0.28209479177387814f;
 
 struct Attribute {
@@ -26,6 +28,11 @@ const char* AccessorType(int components) {
 }
 
 float Sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
+
+// The diffuse colour as glTF's COLOR_0 wants it: linear, though the SH values are sRGB.
+float DiffuseLinear(float sh_dc) {
+  return SrgbToLinear(std::fmin(1.0f, std::fmax(0.0f, 0.5f + kShC0 * sh_dc)));
+}
 
 // Every attribute of the extension from the set's coded values.
 std::vector<Attribute> Attributes(const GaussianSet& set) {
@@ -52,7 +59,7 @@ std::vector<Attribute> Attributes(const GaussianSet& set) {
     const float opacity = Sigmoid(set.opacity_logits[i]);
     out[0].values.insert(out[0].values.end(), p, p + 3);
     for (int c = 0; c < 3; ++c) {
-      out[1].values.push_back(std::fmin(1.0f, std::fmax(0.0f, 0.5f + kShC0 * sh[c])));
+      out[1].values.push_back(DiffuseLinear(sh[c]));
     }
     out[1].values.push_back(opacity);
     const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -85,10 +92,13 @@ void AppendChunk(uint32_t type, std::vector<uint8_t> data, uint8_t pad,
 
 Status EncodeGaussianGlb(const GaussianSet& set, std::vector<uint8_t>* bytes) {
   const size_t n = set.size();
-  if (n == 0 || set.sh_degree < 0 || set.sh_degree > 3 || set.positions.size() != 3 * n ||
+  if (n == 0) {
+    return Status(M4D_ERR_INVALID_ARG, "no Gaussians to write: glTF has no empty point primitive");
+  }
+  if (set.sh_degree < 0 || set.sh_degree > 3 || set.positions.size() != 3 * n ||
       set.log_scales.size() != 3 * n || set.rotations.size() != 4 * n ||
       set.sh.size() != static_cast<size_t>(set.sh_floats()) * n) {
-    return Status(M4D_ERR_INVALID_ARG, "EncodeGaussianGlb: empty set or inconsistent arrays");
+    return Status(M4D_ERR_INVALID_ARG, "the Gaussian arrays do not match the set's size");
   }
   using nlohmann::json;
   const std::vector<Attribute> attributes = Attributes(set);
@@ -118,7 +128,8 @@ Status EncodeGaussianGlb(const GaussianSet& set, std::vector<uint8_t>* bytes) {
     }
     semantics[a.name] = accessors.size();
     accessors.push_back(accessor);
-    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}});
+    views.push_back(
+        {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", kArrayBuffer}});
   }
   const json primitive = {{"attributes", semantics},
                           {"mode", 0},  // POINTS

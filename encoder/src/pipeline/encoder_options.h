@@ -61,6 +61,9 @@ struct EncoderOptions {
   GaussianQuantization compensation_quantization;
   int mlp_bits = 12;
   uint32_t fps_num = 30, fps_den = 1;
+  // The world's up axis the stream states (M4dUpAxis, 0: not stated); kUpAxisAuto: the
+  // capture cameras' (EstimateUpAxis).
+  int up_axis = -1;
 
   // Frames [first_frame, first_frame + frame_count) of the capture (0: to its end).
   int first_frame = 0;

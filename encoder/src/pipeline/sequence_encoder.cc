@@ -10,6 +10,7 @@
 #include "common/byte_writer.h"
 #include "compensation/compensation_candidates.h"
 #include "compensation/compensation_training.h"
+#include "dataset/up_axis_estimate.h"
 #include "decode/appearance_application.h"
 #include "decode/frame_hash.h"
 #include "decode/motion_application.h"
@@ -65,8 +66,9 @@ double Since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames) {
+StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames, const Capture& capture) {
   StreamWriterOptions w;
+  w.sequence.up_axis = o.up_axis == kUpAxisAuto ? EstimateUpAxis(capture.cameras) : o.up_axis;
   w.sequence.sh_degree = o.sh_degree;
   w.sequence.fps_num = o.fps_num;
   w.sequence.fps_den = o.fps_den;
@@ -172,6 +174,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
     return Status(M4D_ERR_INVALID_ARG, std::string("encoder options: ") + what);
   };
   if (o.sh_degree < 0 || o.sh_degree > 3) return bad("SH degree must be 0..3");
+  if (o.up_axis < kUpAxisAuto || o.up_axis > 6) return bad("up axis must be auto or 0..6");
   if (o.first_frame < 0 || o.frame_count < 0) return bad("negative frame range");
   if (o.lookahead_frames < 1) return bad("lookahead must be at least one frame");
   if (o.lookahead_step < 1) return bad("lookahead step must be at least one frame");
@@ -224,7 +227,7 @@ Status SequenceEncoder::Encode(const EncoderCallbacks& callbacks, SequenceReport
   callbacks_ = callbacks;
   report_ = report;
   *report = SequenceReport();
-  writer_ = std::make_unique<StreamWriter>(WriterOptions(options_, frames));
+  writer_ = std::make_unique<StreamWriter>(WriterOptions(options_, frames, capture_));
   estimator_ = std::make_unique<MotionEstimator>(options_.grid, options_.mlp, options_.grid_steps);
 
   if (options_.independent_frames) return EncodeIndependentFrames();

@@ -21,6 +21,7 @@ Status WriteSequenceHeader(const SequenceHeader& h, ByteWriter* out) {
   }
   out->WriteU8(static_cast<uint8_t>(h.mlp.hidden_layers));
   out->WriteU16(static_cast<uint16_t>(h.mlp.hidden_width));
+  if (h.allows_up_axis()) out->WriteU8(static_cast<uint8_t>(h.up_axis));
   return Status::Ok();
 }
 

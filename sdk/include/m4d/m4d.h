@@ -44,15 +44,15 @@ extern "C" {
  * a reserved field), PATCH with fixes. A program built against MAJOR.MINOR runs with any library
  * of the same MAJOR and a MINOR at least as high. */
 #define M4D_API_VERSION_MAJOR 1
-#define M4D_API_VERSION_MINOR 0
+#define M4D_API_VERSION_MINOR 1
 #define M4D_API_VERSION_PATCH 0
 
 /* Library version (of this SDK), and the bitstream version it decodes. */
 #define M4D_VERSION_MAJOR 0
-#define M4D_VERSION_MINOR 8
+#define M4D_VERSION_MINOR 9
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 8 /* decodes 0.2 to 0.7 streams too */
+#define M4D_BITSTREAM_VERSION_MINOR 9 /* decodes 0.2 to 0.8 streams too */
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0
@@ -82,6 +82,18 @@ typedef enum M4dPacketType {
 } M4dPacketType;
 
 /* Log levels passed to M4dLogger.callback. */
+/* M4dStreamInfo.up_axis: the world axis that points up (spec 4.1). Many captures keep
+ * OpenCV's camera convention, y down: M4D_UP_NEG_Y. */
+typedef enum M4dUpAxis {
+  M4D_UP_UNKNOWN = 0,
+  M4D_UP_POS_X = 1,
+  M4D_UP_NEG_X = 2,
+  M4D_UP_POS_Y = 3,
+  M4D_UP_NEG_Y = 4,
+  M4D_UP_POS_Z = 5,
+  M4D_UP_NEG_Z = 6
+} M4dUpAxis;
+
 typedef enum M4dLogLevel { M4D_LOG_ERROR = 0, M4D_LOG_WARNING = 1, M4D_LOG_INFO = 2 } M4dLogLevel;
 
 /* Logger hook. callback may be NULL (the default): nothing is logged. Messages are one line,
@@ -197,7 +209,10 @@ typedef struct M4dStreamInfo {
   uint32_t random_access_gops;       /* of which started with a SEQUENCE_HEADER */
   uint32_t last_keyframe_index;      /* frame index of the last keyframe decoded */
   uint32_t last_random_access_index; /* frame index of the last random-access keyframe */
-  uint8_t reserved[64];
+  /* The world direction that is up in the stream's content (M4dUpAxis), as its encoder
+   * states it; M4D_UP_UNKNOWN before bitstream 0.9 or when not stated. API 1.1. */
+  uint32_t up_axis;
+  uint8_t reserved[60];
 } M4dStreamInfo;
 
 /* Opaque decoder context. */

@@ -251,6 +251,7 @@ int m4d_get_stream_info(const M4dContext* c, M4dStreamInfo* info) {
   info->random_access_gops = s.random_access_gops;
   info->last_keyframe_index = s.last_keyframe;
   info->last_random_access_index = s.last_random_access;
+  info->up_axis = static_cast<uint32_t>(s.sequence.up_axis);
   return M4D_OK;
 }
 

@@ -42,6 +42,13 @@ Status ValidateSequenceHeader(const SequenceHeader& h, uint32_t max_grid_values)
   if (h.mlp.hidden_width < 1 || h.mlp.hidden_width > kMaxMlpWidth) {
     return BitstreamError("sequence header: MLP width out of range 1..256");
   }
+  if (h.up_axis < 0 || h.up_axis > kMaxUpAxis) {
+    return BitstreamError("sequence header: up_axis " + std::to_string(h.up_axis) +
+                          " out of range 0..6");
+  }
+  if (h.up_axis != 0 && !h.allows_up_axis()) {
+    return BitstreamError("sequence header: up_axis needs version 0.9");
+  }
   return Status::Ok();
 }
 
@@ -85,6 +92,11 @@ Status ReadSequenceHeader(ByteReader* reader, uint32_t max_grid_values, Sequence
   }
   h.mlp.hidden_layers = hidden_layers;
   h.mlp.hidden_width = width;
+  if (h.allows_up_axis()) {
+    uint8_t up_axis;
+    if (!reader->ReadU8(&up_axis)) return BitstreamError("sequence header: truncated");
+    h.up_axis = up_axis;
+  }
   M4D_RETURN_IF_ERROR(ValidateSequenceHeader(h, max_grid_values));
   *out = h;
   return Status::Ok();

@@ -16,8 +16,11 @@ namespace m4d {
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
 // keyframes, 0.3 is 0.4 without interleaved rANS states, 0.4 is 0.5 without smallest-three
 // rotations, 0.5 is 0.6 without codebooks, 0.6 is 0.7 with positions in Draco, 0.7 is 0.8
-// without adaptive attributes; spec 10).
+// without adaptive attributes, 0.8 is 0.9 without up_axis; spec 10).
 constexpr int kOldestBitstreamMinor = 2;
+
+// up_axis (spec 4.1): 0 not stated, 1..6 the world's up is +x, -x, +y, -y, +z, -z.
+constexpr int kMaxUpAxis = 6;
 
 // True when the version is one this decoder implements.
 inline bool SupportedBitstreamVersion(int major, int minor) {
@@ -35,10 +38,13 @@ struct SequenceHeader {
   uint32_t num_frames = 0;
   GridConfig grid;
   MlpConfig mlp;
+  int up_axis = 0;  // M4dUpAxis; always 0 before 0.9
 
   // Dependent keyframes and STATIC_UPDATE exist from 0.3 on.
   bool allows_dependent_gops() const { return version_minor >= 3; }
   bool allows_appearance() const { return version_minor >= 3; }
+  // The up_axis field ends the payload from 0.9 on.
+  bool allows_up_axis() const { return version_minor >= 9; }
   // Interleaved rANS states exist from 0.4 on.
   RansLayout rans_layout() const {
     return version_minor >= 4 ? RansLayout::kInterleaved : RansLayout::kSingleState;
