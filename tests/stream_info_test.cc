@@ -4,6 +4,8 @@
 
 #include <climits>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -134,6 +136,25 @@ TEST(StreamInfo, FindRandomAccessSeeksToAnyFrame) {
             M4D_OK);
   EXPECT_EQ(first, 4u);
   EXPECT_EQ(m4d_find_random_access(nullptr, 0, 0, &offset, &first), M4D_ERR_INVALID_ARG);
+}
+
+// Frame numbers that wrap at 2^32 (2^32 - 2, 2^32 - 1, 0 | 1, 2, 3): each frame's own GOP.
+TEST(StreamInfo, FindRandomAccessAcrossTheFrameIndexWrap) {
+  std::ifstream file(
+      std::string(M4D_SOURCE_DIR) + "/conformance/streams/edit_frame_index_wraps.m4d",
+      std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                   std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  const uint32_t frames[] = {0xfffffffeu, 0xffffffffu, 0, 1, 2, 3};
+  for (int i = 0; i < 6; ++i) {
+    size_t offset = 0;
+    uint32_t first = 0;
+    ASSERT_EQ(m4d_find_random_access(bytes.data(), bytes.size(), frames[i], &offset, &first),
+              M4D_OK);
+    EXPECT_EQ(first, frames[i / 3 * 3]) << frames[i];
+    EXPECT_EQ(offset == 0, i < 3) << frames[i];
+  }
 }
 
 TEST(StreamInfo, DependentGopsSeekToTheirRandomAccessPoint) {
