@@ -105,6 +105,30 @@ TEST(StreamInfo, PropsComeBackWithTheFrameTheirPacketCompletes) {
   m4d_close(&ctx);
 }
 
+// Props' reserved bytes are refused as the settings' are, and the packet is not consumed.
+TEST(StreamInfo, PropsWithNonZeroReservedBytesAreRefused) {
+  const TestStream stream = ThreeGops(false);
+  M4dSettings s = DefaultSettings();
+  M4dContext* ctx = nullptr;
+  ASSERT_EQ(m4d_open(&ctx, &s), M4D_OK);
+  M4dDataProps props;
+  m4d_default_data_props(&props);
+  props.reserved[7] = 1;
+  const Packet& header = stream.packets[0];
+  EXPECT_EQ(m4d_send_packet_props(ctx, header.data(), header.size(), &props), M4D_ERR_INVALID_ARG);
+  EXPECT_STRNE(m4d_last_error(ctx), "");
+  props.reserved[7] = 0;
+  for (size_t i = 0; i < 4; ++i) {
+    const Packet& p = stream.packets[i];
+    ASSERT_EQ(m4d_send_packet_props(ctx, p.data(), p.size(), &props), M4D_OK) << i;
+  }
+  M4dFrame frame;
+  ASSERT_EQ(m4d_get_frame(ctx, &frame), M4D_OK);
+  EXPECT_EQ(frame.frame_index, 0u);
+  m4d_frame_unref(&frame);
+  m4d_close(&ctx);
+}
+
 TEST(StreamInfo, FindRandomAccessSeeksToAnyFrame) {
   const TestStream stream = ThreeGops(false);
   const std::vector<uint8_t> bytes = Concatenate(stream.packets);

@@ -257,7 +257,8 @@ M4D_API int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t fr
 M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 
 /* m4d_send_packet with props that come back in M4dFrame.props of the frame this packet
- * completes (NULL: the defaults). */
+ * completes (NULL: the defaults). Initialise props with m4d_default_data_props: non-zero
+ * reserved bytes give M4D_ERR_INVALID_ARG (the packet is not consumed). */
 M4D_API int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
                                   const M4dDataProps* props);
 
