@@ -4,7 +4,8 @@
 # conformance runner, builds the WebAssembly decoder and checks it the same way under Node.js
 # (scripts/test_web.sh), runs a short fuzz session, runs the whole test suite, installs the SDK
 # alone and builds out-of-tree consumers against it, then builds
-# everything with ASan and UBSan and runs the whole test suite again under them.
+# everything with ASan and UBSan and runs the whole test suite again under them, and the
+# threaded unit tests under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,3 +26,4 @@ timed scripts/fuzz.sh "${M4D_FUZZ_SECONDS:-60}"
 timed ctest --test-dir build/release --output-on-failure -j2
 timed scripts/check_install.sh
 timed scripts/sanitize.sh
+timed scripts/tsan.sh

@@ -72,7 +72,7 @@ std::vector<Camera> RingCameras() {
 }
 
 M4dRenderCamera ToApiCamera(const Camera& c) {
-  M4dRenderCamera out;
+  M4dRenderCamera out = {};
   out.width = static_cast<uint32_t>(c.width);
   out.height = static_cast<uint32_t>(c.height);
   out.fx = c.fx;
@@ -193,6 +193,9 @@ TEST_F(GlRendererTest, RejectsBadArguments) {
   EXPECT_STRNE(m4d_renderer_last_error(renderer_), "");
   api = ToApiCamera(camera);
   api.width = 0;
+  EXPECT_EQ(m4d_renderer_draw(renderer_, &api), M4D_ERR_INVALID_ARG);
+  api = ToApiCamera(camera);
+  api.reserved[15] = 1;  // refused as the settings' reserved bytes are
   EXPECT_EQ(m4d_renderer_draw(renderer_, &api), M4D_ERR_INVALID_ARG);
   EXPECT_EQ(m4d_renderer_draw(renderer_, nullptr), M4D_ERR_INVALID_ARG);
   Draw(frames_[0], M4D_LAYER_ALL, camera);

@@ -4,6 +4,8 @@
 
 #include <climits>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -103,6 +105,30 @@ TEST(StreamInfo, PropsComeBackWithTheFrameTheirPacketCompletes) {
   m4d_close(&ctx);
 }
 
+// Props' reserved bytes are refused as the settings' are, and the packet is not consumed.
+TEST(StreamInfo, PropsWithNonZeroReservedBytesAreRefused) {
+  const TestStream stream = ThreeGops(false);
+  M4dSettings s = DefaultSettings();
+  M4dContext* ctx = nullptr;
+  ASSERT_EQ(m4d_open(&ctx, &s), M4D_OK);
+  M4dDataProps props;
+  m4d_default_data_props(&props);
+  props.reserved[7] = 1;
+  const Packet& header = stream.packets[0];
+  EXPECT_EQ(m4d_send_packet_props(ctx, header.data(), header.size(), &props), M4D_ERR_INVALID_ARG);
+  EXPECT_STRNE(m4d_last_error(ctx), "");
+  props.reserved[7] = 0;
+  for (size_t i = 0; i < 4; ++i) {
+    const Packet& p = stream.packets[i];
+    ASSERT_EQ(m4d_send_packet_props(ctx, p.data(), p.size(), &props), M4D_OK) << i;
+  }
+  M4dFrame frame;
+  ASSERT_EQ(m4d_get_frame(ctx, &frame), M4D_OK);
+  EXPECT_EQ(frame.frame_index, 0u);
+  m4d_frame_unref(&frame);
+  m4d_close(&ctx);
+}
+
 TEST(StreamInfo, FindRandomAccessSeeksToAnyFrame) {
   const TestStream stream = ThreeGops(false);
   const std::vector<uint8_t> bytes = Concatenate(stream.packets);
@@ -134,6 +160,25 @@ TEST(StreamInfo, FindRandomAccessSeeksToAnyFrame) {
             M4D_OK);
   EXPECT_EQ(first, 4u);
   EXPECT_EQ(m4d_find_random_access(nullptr, 0, 0, &offset, &first), M4D_ERR_INVALID_ARG);
+}
+
+// Frame numbers that wrap at 2^32 (2^32 - 2, 2^32 - 1, 0 | 1, 2, 3): each frame's own GOP.
+TEST(StreamInfo, FindRandomAccessAcrossTheFrameIndexWrap) {
+  std::ifstream file(
+      std::string(M4D_SOURCE_DIR) + "/conformance/streams/edit_frame_index_wraps.m4d",
+      std::ios::binary);
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                   std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  const uint32_t frames[] = {0xfffffffeu, 0xffffffffu, 0, 1, 2, 3};
+  for (int i = 0; i < 6; ++i) {
+    size_t offset = 0;
+    uint32_t first = 0;
+    ASSERT_EQ(m4d_find_random_access(bytes.data(), bytes.size(), frames[i], &offset, &first),
+              M4D_OK);
+    EXPECT_EQ(first, frames[i / 3 * 3]) << frames[i];
+    EXPECT_EQ(offset == 0, i < 3) << frames[i];
+  }
 }
 
 TEST(StreamInfo, DependentGopsSeekToTheirRandomAccessPoint) {

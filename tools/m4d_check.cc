@@ -2,7 +2,9 @@
 // Stricter than a decoder, which skips what it may (packets before the first
 // SEQUENCE_HEADER, data after damage): every packet must parse, follow the stream grammar of
 // spec 2 (packet order, end_of_frame, frame numbering) and decode without error with payload
-// CRCs checked. Prints every violation with its byte offset, then a summary (GOPs, frames,
+// CRCs checked; every payload's CRC is checked even where the decoder skips the rest of a GOP
+// after an error, and damaged headers are skipped as a decoder does, so that every damaged
+// packet is listed. Prints every violation with its byte offset, then a summary (GOPs, frames,
 // bytes per packet type, a note when num_frames, which is informative, disagrees); exits 0
 // only for a conforming stream.
 #include <CLI/CLI.hpp>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/crc32.h"
 #include "m4d/m4d.h"
 #include "usage_exit.h"
 
@@ -21,6 +24,8 @@ constexpr uint32_t kLastType = M4D_PACKET_APPEARANCE;
 const char* kTypeNames[] = {"?",           "SEQUENCE_HEADER", "KEYFRAME_STATIC", "KEYFRAME_DYNAMIC",
                             "MLP_WEIGHTS", "MOTION_GRID",     "COMPENSATION",    "STATIC_UPDATE",
                             "APPEARANCE"};
+
+const char* TypeName(uint32_t type) { return type <= kLastType ? kTypeNames[type] : "unknown"; }
 
 // The grammar of spec 2 as the packet types that may follow each one.
 bool MayFollow(uint32_t previous, uint32_t type) {
@@ -46,8 +51,9 @@ bool MayFollow(uint32_t previous, uint32_t type) {
 
 struct Checker {
   int violations = 0;
-  uint32_t previous = 0;  // type of the previous packet, 0 at the start
-  uint32_t frame = 0;     // frame_index of the previous packet
+  uint32_t previous = 0;        // type of the previous packet, 0 at the start
+  uint32_t frame = 0;           // frame_index of the previous packet
+  bool resynchronised = false;  // damaged bytes were skipped just before this packet
   int gops = 0, frames = 0;
   uint32_t declared_frames = 0;
   size_t bytes[kLastType + 1] = {};
@@ -58,14 +64,29 @@ struct Checker {
   }
 
   void CheckGrammar(size_t offset, const M4dPacketInfo& info) {
+    if (!resynchronised) CheckOrder(offset, info);
+    resynchronised = false;
     const uint32_t type = info.type;
-    const char* name = type <= kLastType ? kTypeNames[type] : "unknown";
-    if (!MayFollow(previous, type)) {
-      Violation(offset, std::string(name) + " may not follow " + kTypeNames[previous]);
-    }
+    const char* name = TypeName(type);
     const bool ends = type == M4D_PACKET_MLP_WEIGHTS || type == M4D_PACKET_COMPENSATION;
     if ((info.end_of_frame != 0) != ends) {
       Violation(offset, std::string(name) + (ends ? " without" : " with") + " end_of_frame");
+    }
+    const bool ended = previous == M4D_PACKET_MLP_WEIGHTS || previous == M4D_PACKET_COMPENSATION;
+    gops += type == M4D_PACKET_SEQUENCE_HEADER ||
+            (ended && (type == M4D_PACKET_STATIC_UPDATE || type == M4D_PACKET_KEYFRAME_DYNAMIC));
+    frames += ends;
+    previous = type <= kLastType ? type : previous;
+    frame = info.frame_index;
+  }
+
+  // Packet order and frame numbering against the previous packet. Not after
+  // skipped bytes: what they held is unknown, and the damage is reported already.
+  void CheckOrder(size_t offset, const M4dPacketInfo& info) {
+    const uint32_t type = info.type;
+    const char* name = TypeName(type);
+    if (!MayFollow(previous, type)) {
+      Violation(offset, std::string(name) + " may not follow " + kTypeNames[previous]);
     }
     const bool ended = previous == M4D_PACKET_MLP_WEIGHTS || previous == M4D_PACKET_COMPENSATION;
     const bool starts_frame = type == M4D_PACKET_SEQUENCE_HEADER || ended;
@@ -77,11 +98,6 @@ struct Checker {
       Violation(offset, std::string(name) + " of frame " + std::to_string(info.frame_index) +
                             " inside frame " + std::to_string(frame));
     }
-    gops += type == M4D_PACKET_SEQUENCE_HEADER ||
-            (ended && (type == M4D_PACKET_STATIC_UPDATE || type == M4D_PACKET_KEYFRAME_DYNAMIC));
-    frames += ends;
-    previous = type <= kLastType ? type : previous;
-    frame = info.frame_index;
   }
 };
 
@@ -89,6 +105,22 @@ struct Checker {
 uint32_t DeclaredFrames(const uint8_t* packet) {
   const uint8_t* p = packet + 24 + 12;
   return p[0] | p[1] << 8 | p[2] << 16 | static_cast<uint32_t>(p[3]) << 24;
+}
+
+// Checked here, not only by the decoder: after a rejected packet the decoder skips the rest of
+// its GOP, and a second damaged packet there would go unreported.
+bool PayloadCrcMatches(const uint8_t* packet, const M4dPacketInfo& info) {
+  const uint8_t* c = packet + 16;  // payload_crc, u32 little-endian
+  const uint32_t crc = c[0] | c[1] << 8 | c[2] << 16 | static_cast<uint32_t>(c[3]) << 24;
+  return m4d::Crc32(packet + 24, info.payload_size) == crc;
+}
+
+// The offset of the next packet header after damaged bytes at `from` (the end when none).
+size_t Resync(const std::vector<uint8_t>& data, size_t from) {
+  size_t offset = 0;
+  M4dPacketInfo info;
+  const int r = m4d_find_packet(data.data() + from, data.size() - from, &offset, &info);
+  return (r == M4D_OK || info.packet_size > 0) ? from + offset : data.size();
 }
 
 }  // namespace
@@ -110,13 +142,24 @@ int main(int argc, char** argv) {
   while (pos < data.size()) {
     M4dPacketInfo info;
     int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
+    if (r == M4D_ERR_AGAIN) {
+      check.Violation(pos, "the stream ends inside a packet");
+      break;
+    }
     if (r < 0) {
-      check.Violation(pos, r == M4D_ERR_AGAIN
-                               ? "the stream ends inside a packet"
-                               : std::string("packet header: ") + m4d_error_string(r));
-      break;  // nothing after a damaged header can be trusted
+      // Resynchronise as a decoder does (spec 3), to report the damage after this too.
+      check.Violation(pos, std::string("packet header: ") + m4d_error_string(r));
+      m4d_flush(ctx);
+      pos = Resync(data, pos + 1);
+      check.resynchronised = true;
+      continue;
     }
     check.CheckGrammar(pos, info);
+    const bool crc_ok = PayloadCrcMatches(&data[pos], info);
+    if (!crc_ok) {
+      check.Violation(pos, std::string(TypeName(info.type)) + " (frame " +
+                               std::to_string(info.frame_index) + "): payload CRC mismatch");
+    }
     if (info.type == M4D_PACKET_SEQUENCE_HEADER && info.payload_size >= 16) {
       const uint32_t declared = DeclaredFrames(&data[pos]);
       if (check.declared_frames == 0) check.declared_frames = declared;
@@ -129,7 +172,10 @@ int main(int argc, char** argv) {
       r = m4d_send_packet(ctx, &data[pos], info.packet_size);
     }
     while (m4d_get_frame(ctx, &frame) == M4D_OK) m4d_frame_unref(&frame);
-    if (r < 0) check.Violation(pos, std::string("decoding: ") + m4d_last_error(ctx));
+    // A payload CRC mismatch is reported above.
+    if (r < 0 && (crc_ok || r != M4D_ERR_CHECKSUM)) {
+      check.Violation(pos, std::string("decoding: ") + m4d_last_error(ctx));
+    }
     pos += info.packet_size;
   }
   m4d_close(&ctx);

@@ -98,6 +98,19 @@ class ErrorReport {
   int count_ = 0;
 };
 
+// Which frames a seek outputs: those from the target on, in stream order. Frame numbers wrap
+// at 2^32, so they are compared by their distance from the random-access point's frame, where
+// decoding starts (no other SEQUENCE_HEADER comes before the target, so the numbers count up).
+struct SeekTarget {
+  uint32_t start = 0;   // the first frame of the random-access GOP decoding starts at
+  uint32_t target = 0;  // the frame sought
+  bool reached = true;  // once reached, every later frame is output
+  bool Reached(uint32_t frame_index) {
+    reached = reached || frame_index - start >= target - start;
+    return reached;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,7 +126,7 @@ int main(int argc, char** argv) {
       ->check(m4d::AtLeast(0));
   app.add_option("--start-frame", opt.start_frame,
                  "seek: decode from the random-access point at or before this frame index and "
-                 "print the frames from it on (m4d_find_random_access)")
+                 "print the frames from it on in stream order (m4d_find_random_access)")
       ->check(m4d::Within(int64_t{0}, int64_t{UINT32_MAX}))
       ->excludes("--start-gop");
   app.add_option("--threads", opt.threads, "decoder threads (0: every core); output is the same")
@@ -156,10 +169,12 @@ int main(int argc, char** argv) {
   int frames = 0, gop = -1, concealed = 0;
   bool inside_frame = false;  // the last packet header read has no end_of_frame
   size_t pos = 0, skipped = 0;
+  SeekTarget seek;
   if (opt.start_frame >= 0) {
     uint32_t first = 0;
     const uint32_t target = static_cast<uint32_t>(opt.start_frame);
     const int r = m4d_find_random_access(data.data(), data.size(), target, &pos, &first);
+    seek = {first, target, false};
     if (r < 0) {
       std::fprintf(stderr, "m4d_decode: cannot seek to frame %u: %s\n", target,
                    r == M4D_ERR_AGAIN ? "the stream holds no such frame"
@@ -173,7 +188,7 @@ int main(int argc, char** argv) {
   auto drain = [&]() {
     M4dFrame frame;
     while (m4d_get_frame(ctx, &frame) == M4D_OK) {
-      if (static_cast<int64_t>(frame.frame_index) < opt.start_frame) {
+      if (!seek.Reached(frame.frame_index)) {
         m4d_frame_unref(&frame);  // decoded only to reach the frame sought
         continue;
       }

@@ -47,11 +47,39 @@ struct FrameRow {
   }
 };
 
+// ErrorRow.code when the stream ends inside a packet or a frame: TRUNCATED (spec 9), as
+// m4d_decode names it, not an M4D_ERR_* code; -100 as in the WebAssembly API.
+constexpr int kTruncated = -100;
+
 struct ErrorRow {
   size_t offset = 0;
-  int code = 0;
+  int code = 0;  // M4D_ERR_* or kTruncated
   std::string message;
 };
+
+// The names of bitstream-spec 9, as m4d_decode's first_error line gives them.
+const char* ErrorName(int code) {
+  switch (code) {
+    case kTruncated:
+      return "TRUNCATED";
+    case M4D_ERR_NOMEM:
+      return "M4D_ERR_NOMEM";
+    case M4D_ERR_BITSTREAM:
+      return "M4D_ERR_BITSTREAM";
+    case M4D_ERR_CHECKSUM:
+      return "M4D_ERR_CHECKSUM";
+    case M4D_ERR_UNSUPPORTED:
+      return "M4D_ERR_UNSUPPORTED";
+    case M4D_ERR_LIMIT:
+      return "M4D_ERR_LIMIT";
+    default:
+      return "UNKNOWN";
+  }
+}
+
+const char* ErrorText(int code) {
+  return code == kTruncated ? "truncated" : m4d_error_string(code);
+}
 
 struct Probe {
   std::vector<FrameRow> frames;
@@ -103,11 +131,13 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
     return;
   }
   size_t pos = 0;
+  bool inside_frame = false;  // the last packet header read has no end_of_frame (spec 3, 5)
   while (pos < data.size()) {
     M4dPacketInfo info;
     int r = m4d_parse_packet_header(&data[pos], data.size() - pos, &info);
     if (r == M4D_ERR_AGAIN) {
-      probe->errors.push_back({pos, M4D_ERR_BITSTREAM, "the stream ends inside a packet"});
+      probe->errors.push_back({pos, kTruncated, "the stream ends inside a packet"});
+      inside_frame = false;  // one truncation, as m4d_decode reports it
       break;
     }
     if (r < 0) {
@@ -117,6 +147,7 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
       pos = Resync(data, pos + 1);
       continue;
     }
+    inside_frame = !info.end_of_frame;
     probe->pending.push_back({pos, info.type, info.packet_size});
     r = m4d_send_packet(ctx, &data[pos], info.packet_size);
     if (r == M4D_ERR_AGAIN) {
@@ -124,6 +155,8 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
       r = m4d_send_packet(ctx, &data[pos], info.packet_size);
     }
     TakeFrames(ctx, probe);
+    // A frame that ended without output (skipped after damage): its packets are not the next's.
+    if (info.end_of_frame) probe->pending.clear();
     if (r < 0) {
       probe->errors.push_back({pos, r, m4d_last_error(ctx)});
       probe->pending.clear();
@@ -132,8 +165,9 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
     }
     pos += info.packet_size;
   }
-  if (!probe->pending.empty()) {
-    probe->errors.push_back({data.size(), M4D_ERR_BITSTREAM, "the stream ends inside a frame"});
+  if (inside_frame) {
+    probe->errors.push_back(
+        {data.size(), kTruncated, "the stream ends inside a frame (its last packet is missing)"});
   }
   probe->configured = m4d_get_stream_info(ctx, &probe->info) == M4D_OK;
   m4d_close(&ctx);
@@ -180,8 +214,12 @@ void PrintTable(const std::string& path, size_t size, const Probe& probe) {
   }
   std::printf("\n%zu frames, %zu errors\n", probe.frames.size(), probe.errors.size());
   for (const ErrorRow& e : probe.errors) {
-    std::printf("  byte %zu: error %d (%s): %s\n", e.offset, e.code, m4d_error_string(e.code),
-                e.message.c_str());
+    if (e.code == kTruncated) {  // worded as m4d_decode words it
+      std::printf("  byte %zu: truncated: %s\n", e.offset, e.message.c_str());
+    } else {
+      std::printf("  byte %zu: error %d (%s): %s\n", e.offset, e.code, m4d_error_string(e.code),
+                  e.message.c_str());
+    }
   }
 }
 
@@ -225,7 +263,8 @@ nlohmann::json ToJson(const std::string& path, size_t size, const Probe& probe) 
   for (const ErrorRow& e : probe.errors) {
     errors.push_back({{"offset", e.offset},
                       {"code", e.code},
-                      {"error", m4d_error_string(e.code)},
+                      {"name", ErrorName(e.code)},
+                      {"error", ErrorText(e.code)},
                       {"message", e.message}});
   }
   return {{"stream", stream}, {"gops", gops}, {"frames", frames}, {"errors", errors}};

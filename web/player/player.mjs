@@ -32,6 +32,7 @@ const state = {
   frame: null,          // the frame on screen: { index, isKeyframe }
   seekTo: null,         // a seek waiting for its bytes
   lastShown: -1,
+  firstIndex: null,     // the stream's first frame: the slider and the loop start there
   nextDue: 0,           // time the next frame is due
   orbit: { yaw: 0, pitch: 0, zoom: 1, centre: null, distance: 1 },
   camera: 'orbit',
@@ -179,7 +180,7 @@ function advance() {
   const start = performance.now();
   let frame = decoder.nextFrame();
   if (!frame && state.ended && state.lastShown >= 0) {
-    decoder.seek(0);  // loop
+    decoder.seek(state.firstIndex);  // loop
     frame = decoder.nextFrame();
   }
   reportErrors();
@@ -190,6 +191,7 @@ function advance() {
   state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe,
                   concealed: frame.concealedLayers };
   state.lastShown = frame.frameIndex;
+  if (state.firstIndex === null) state.firstIndex = frame.frameIndex;
   return true;
 }
 
@@ -208,12 +210,16 @@ function reportErrors() {
     `playback resumes at the next GOP (${e.count} error${e.count > 1 ? 's' : ''})`;
 }
 
+// A frame's place in the stream: frame numbers may start anywhere and wrap at 2^32.
+const place = (index) => (index - (state.firstIndex ?? 0)) >>> 0;
+
 function updateReadout() {
   const info = decoder.streamInfo();
-  const frames = info && info.numFrames ? info.numFrames : Math.max(state.lastShown + 1, 1);
+  const frames = info && info.numFrames ? info.numFrames
+    : state.lastShown >= 0 ? place(state.lastShown) + 1 : 1;
   $('seek').max = String(frames - 1);
   if (state.frame) {
-    $('seek').value = String(state.frame.index);
+    $('seek').value = String(place(state.frame.index));
     $('frame').textContent = `frame ${state.frame.index} / ${frames - 1}${state.frame.isKeyframe ? ' (key)' : ''}${concealedText(state.frame.concealed)}`;
   }
   const stats = state.frame ? renderer.stats() : { visible: 0 };
@@ -245,7 +251,7 @@ $('play').onclick = () => {
   state.playing = !state.playing;
   $('play').textContent = state.playing ? 'Pause' : 'Play';
 };
-$('seek').oninput = (e) => { state.seekTo = Number(e.target.value); };
+$('seek').oninput = (e) => { state.seekTo = ((state.firstIndex ?? 0) + Number(e.target.value)) >>> 0; };
 $('camera').onchange = (e) => { state.camera = e.target.value; };
 $('foreground').onchange = () => { if (state.frame) renderer.upload(decoder, layersShown()); };
 let drag = null;

@@ -53,10 +53,16 @@ bool Resynchronise(M4dWebStream* s) {
   return true;
 }
 
-// Takes a decoded frame into s->frame, dropping those before first_frame.
+// Whether a seek has reached its target: from it on, every frame is output in stream order.
+bool SeekReached(M4dWebStream* s, uint32_t frame_index) {
+  s->seeking = s->seeking && frame_index - s->seek_start < s->seek_target - s->seek_start;
+  return !s->seeking;
+}
+
+// Takes a decoded frame into s->frame, dropping those before a seek's target.
 bool TakeFrame(M4dWebStream* s) {
   while (m4d_get_frame(s->context, &s->frame) == M4D_OK) {
-    if (static_cast<int64_t>(s->frame.frame_index) >= s->first_frame) {
+    if (SeekReached(s, s->frame.frame_index)) {
       s->holding_frame = true;
       return true;
     }
@@ -172,7 +178,7 @@ EMSCRIPTEN_KEEPALIVE int m4dw_stream_next_frame(M4dWebStream* s) {
 // Restarts decoding at the random-access point at or before frame `frame_index` among the
 // bytes received so far (m4d_find_random_access); frames before it are then dropped. Returns
 // 0, M4D_ERR_AGAIN when the frame is not among those bytes, or M4D_ERR_BITSTREAM when no
-// random-access GOP precedes it.
+// random-access GOP precedes it. Then the frames from it on come in stream order.
 EMSCRIPTEN_KEEPALIVE int m4dw_stream_seek(M4dWebStream* s, uint32_t frame_index) {
   if (s == nullptr) return M4D_ERR_INVALID_ARG;
   size_t offset = 0;
@@ -185,7 +191,9 @@ EMSCRIPTEN_KEEPALIVE int m4dw_stream_seek(M4dWebStream* s, uint32_t frame_index)
   m4d_flush(s->context);
   s->position = offset;
   s->resynchronising = false;
-  s->first_frame = frame_index;
+  s->seeking = true;
+  s->seek_start = start_frame;
+  s->seek_target = frame_index;
   return M4D_OK;
 }
 

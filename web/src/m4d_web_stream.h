@@ -18,7 +18,11 @@ struct M4dWebStream {
   bool resynchronising = false;
   bool ended = false;
   bool inside_frame = false;  // the last packet header read has no end_of_frame
-  int64_t first_frame = -1;   // frames before it are dropped (after a seek)
+  // After a seek, the frames before seek_target are dropped. Frame numbers wrap at 2^32: a
+  // frame is placed by its distance from seek_start, the random-access frame decoding restarts at.
+  bool seeking = false;
+  uint32_t seek_start = 0;
+  uint32_t seek_target = 0;
   M4dFrame frame = {};
   bool holding_frame = false;
   int error_count = 0;

@@ -148,6 +148,21 @@ test('seeks to a frame among the bytes received', () => {
   decoder.close();
 });
 
+test('a seek gives the frames from the one sought on, also where frame numbers wrap', () => {
+  const name = 'edit_frame_index_wraps';  // frames 2^32 - 2, 2^32 - 1, 0, 1, 2, 3
+  const expected = expectedLines(streams, `${name}.md5`);
+  const decoder = m4d.openDecoder();
+  decoder.push(read(streams, `${name}.m4d`));
+  decoder.end();
+  expected.forEach((line, i) => {
+    assert.equal(decoder.seek(Number(line.split(' ')[0])), true);
+    const lines = [];
+    for (let f; (f = decoder.nextFrame()); ) lines.push(`${f.frameIndex} ${f.hash()}`);
+    assert.deepEqual(lines, expected.slice(i));
+  });
+  decoder.close();
+});
+
 test('every invalid stream gives its frames and its first error, without throwing', () => {
   const want = new Map(
     read(invalid, 'EXPECTED').toString().split('\n')

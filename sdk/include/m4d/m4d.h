@@ -254,7 +254,9 @@ M4D_API int m4d_find_packet(const uint8_t* data, size_t size, size_t* offset, M4
  * stream from its start, or from any packet boundary) and returns 0 with *offset, the byte
  * offset of the SEQUENCE_HEADER of the last random-access GOP that starts at or before the
  * frame, and *start_frame, that GOP's first frame. Call m4d_flush, send packets from
- * data + *offset, and drop the frames before frame_index. Returns M4D_ERR_AGAIN when no packet
+ * data + *offset, and drop the frames that come before frame_index in stream order; frame
+ * numbers wrap at 2^32, so compare (index - *start_frame) with (frame_index - *start_frame)
+ * in uint32_t arithmetic, not the numbers themselves. Returns M4D_ERR_AGAIN when no packet
  * of frame_index is in data (a complete stream then does not hold that frame; a partial one
  * may, later), M4D_ERR_BITSTREAM when packets of the frame are found but no random-access GOP
  * starts before them, M4D_ERR_INVALID_ARG for NULL pointers. Damaged bytes are skipped as
@@ -280,7 +282,8 @@ M4D_API int m4d_find_random_access(const uint8_t* data, size_t size, uint32_t fr
 M4D_API int m4d_send_packet(M4dContext* c, const uint8_t* data, size_t size);
 
 /* m4d_send_packet with props that come back in M4dFrame.props of the frame this packet
- * completes (NULL: the defaults). */
+ * completes (NULL: the defaults). Initialise props with m4d_default_data_props: non-zero
+ * reserved bytes give M4D_ERR_INVALID_ARG (the packet is not consumed). */
 M4D_API int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
                                   const M4dDataProps* props);
 

@@ -114,7 +114,7 @@ M4D_API int m4d_renderer_upload(M4dRenderer* r, const M4dFrame* frame, uint32_t 
  * the camera's size. In the caller's context: into the bound draw framebuffer's viewport,
  * which should have the camera's size; blending, depth and stencil tests, face culling, the
  * program, vertex array and array buffer bindings are changed and not restored.
- * M4D_ERR_INVALID_ARG for NULL arguments or a bad camera. */
+ * M4D_ERR_INVALID_ARG for NULL arguments or a bad camera (non-zero reserved bytes included). */
 M4D_API int m4d_renderer_draw(M4dRenderer* r, const M4dRenderCamera* camera);
 
 /* Headless only: reads the last draw as width * height RGB bytes, row 0 at the top, into

@@ -38,8 +38,10 @@ int Fail(M4dContext* c, int code, const std::string& message) {
   return code;
 }
 
-bool ReservedZero(const M4dSettings* s) {
-  for (uint8_t b : s->reserved) {
+// Reserved bytes must be zero, so that a later field can give them a meaning.
+template <size_t N>
+bool ReservedZero(const uint8_t (&reserved)[N]) {
+  for (uint8_t b : reserved) {
     if (b != 0) return false;
   }
   return true;
@@ -99,7 +101,7 @@ void m4d_default_data_props(M4dDataProps* props) {
 int m4d_open(M4dContext** c_out, const M4dSettings* s) {
   if (!c_out) return M4D_ERR_INVALID_ARG;
   *c_out = nullptr;
-  if (!s || s->layers == 0 || (s->layers & ~M4D_LAYER_ALL) != 0 || !ReservedZero(s) ||
+  if (!s || s->layers == 0 || (s->layers & ~M4D_LAYER_ALL) != 0 || !ReservedZero(s->reserved) ||
       (s->allocator.alloc == nullptr) != (s->allocator.free == nullptr) ||
       (s->verify_checksums != 0 && s->verify_checksums != 1) || s->threads < 0 ||
       s->threads > kMaxThreads) {
@@ -194,6 +196,9 @@ int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
                           const M4dDataProps* props) {
   if (!c) return M4D_ERR_INVALID_ARG;
   if (!data) return Fail(c, M4D_ERR_INVALID_ARG, "m4d_send_packet: data is NULL");
+  if (props && !ReservedZero(props->reserved)) {
+    return Fail(c, M4D_ERR_INVALID_ARG, "m4d_send_packet_props: non-zero reserved bytes");
+  }
   if (c->decoder->HasFrame()) return M4D_ERR_AGAIN;
   c->last_error.clear();
   try {

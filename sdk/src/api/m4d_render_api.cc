@@ -129,6 +129,11 @@ int m4d_renderer_upload(M4dRenderer* r, const M4dFrame* frame, uint32_t layers) 
 int m4d_renderer_draw(M4dRenderer* r, const M4dRenderCamera* camera) {
   if (!r) return M4D_ERR_INVALID_ARG;
   if (!camera) return Fail(r, m4d::Status(M4D_ERR_INVALID_ARG, "renderer: null camera"));
+  for (uint8_t b : camera->reserved) {  // zero, as in the settings: room for later fields
+    if (b != 0) {
+      return Fail(r, m4d::Status(M4D_ERR_INVALID_ARG, "renderer: non-zero reserved camera bytes"));
+    }
+  }
   try {
     const m4d::Status status = r->renderer->Draw(ToCamera(*camera));
     if (!status.ok()) return Fail(r, status);

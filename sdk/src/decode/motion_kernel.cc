@@ -249,8 +249,10 @@ void Update(const Block& block, const Lanes* o, GaussianSet* set) {
   float* positions = set->positions.data();
   float* rotations = set->rotations.data();
   Lanes q[4];
+  // Unused lanes read the block's first Gaussian: Gaussian 0 may be another task's, being
+  // written by another thread (a data race, though the lanes are discarded).
   for (int l = 0; l < kLanes; ++l) {
-    const float* src = rotations + 4 * static_cast<size_t>(l < block.count ? block.index[l] : 0);
+    const float* src = rotations + 4 * static_cast<size_t>(block.index[l < block.count ? l : 0]);
     for (int c = 0; c < 4; ++c) q[c].f[l] = src[c];
   }
   alignas(kVectorBytes) int32_t finite[kLanes];
