@@ -31,6 +31,7 @@ struct PacketRow {
   size_t offset = 0;
   uint32_t type = 0;
   size_t size = 0;
+  bool damaged = false;  // rejected by the decoder
 };
 
 struct FrameRow {
@@ -39,6 +40,7 @@ struct FrameRow {
   bool random_access = false;  // its packets include a SEQUENCE_HEADER
   std::vector<PacketRow> packets;
   uint32_t static_count = 0, dynamic_count = 0;
+  uint32_t concealed = 0;  // M4dFrame.concealed_layers: layers lost to damage (spec 6.8)
   std::string hash;
   size_t bytes() const {
     size_t total = 0;
@@ -107,6 +109,7 @@ void TakeFrames(M4dContext* ctx, Probe* probe) {
     }
     row.static_count = frame.static_layer.count;
     row.dynamic_count = frame.dynamic_layer.count;
+    row.concealed = frame.concealed_layers;
     uint8_t md5[16];
     if (m4d_frame_hash(&frame, md5) == M4D_OK) row.hash = Hex(md5);
     probe->frames.push_back(std::move(row));
@@ -154,12 +157,13 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
       TakeFrames(ctx, probe);
       r = m4d_send_packet(ctx, &data[pos], info.packet_size);
     }
+    // A damaged payload may still end a frame, output with that layer concealed (spec 6.8).
+    if (r < 0) probe->pending.back().damaged = true;
     TakeFrames(ctx, probe);
     // A frame that ended without output (skipped after damage): its packets are not the next's.
     if (info.end_of_frame) probe->pending.clear();
     if (r < 0) {
       probe->errors.push_back({pos, r, m4d_last_error(ctx)});
-      probe->pending.clear();
       pos = Resync(data, pos + 24);
       continue;
     }
@@ -171,6 +175,12 @@ void Run(const std::vector<uint8_t>& data, Probe* probe) {
   }
   probe->configured = m4d_get_stream_info(ctx, &probe->info) == M4D_OK;
   m4d_close(&ctx);
+}
+
+const char* ConcealedNote(uint32_t concealed) {
+  if (concealed == M4D_LAYER_ALL) return "; both layers concealed";
+  if (concealed == M4D_LAYER_STATIC) return "; static layer concealed";
+  return concealed == M4D_LAYER_DYNAMIC ? "; dynamic layer concealed" : "";
 }
 
 // GOPs as (first frame row, end row): a GOP starts at each keyframe.
@@ -205,11 +215,12 @@ void PrintTable(const std::string& path, size_t size, const Probe& probe) {
       std::string packets;
       for (const PacketRow& p : f.packets) {
         packets += (packets.empty() ? "" : ", ") + std::string(TypeName(p.type)) + " " +
-                   std::to_string(p.size);
+                   std::to_string(p.size) + (p.damaged ? " damaged" : "");
       }
-      std::printf("%6u %5s %9u %9u %10zu  %-32s %s\n", f.index,
+      std::printf("%6u %5s %9u %9u %10zu  %-32s %s%s\n", f.index,
                   f.keyframe ? (f.random_access ? "key" : "dkey") : "inter", f.static_count,
-                  f.dynamic_count, f.bytes(), f.hash.c_str(), packets.c_str());
+                  f.dynamic_count, f.bytes(), f.hash.c_str(), packets.c_str(),
+                  ConcealedNote(f.concealed));
     }
   }
   std::printf("\n%zu frames, %zu errors\n", probe.frames.size(), probe.errors.size());
@@ -239,8 +250,14 @@ nlohmann::json ToJson(const std::string& path, size_t size, const Probe& probe) 
   for (const FrameRow& f : probe.frames) {
     json packets = json::array();
     for (const PacketRow& p : f.packets) {
-      packets.push_back({{"offset", p.offset}, {"type", TypeName(p.type)}, {"bytes", p.size}});
+      packets.push_back({{"offset", p.offset},
+                         {"type", TypeName(p.type)},
+                         {"bytes", p.size},
+                         {"damaged", p.damaged}});
     }
+    json concealed = json::array();
+    if (f.concealed & M4D_LAYER_STATIC) concealed.push_back("static");
+    if (f.concealed & M4D_LAYER_DYNAMIC) concealed.push_back("dynamic");
     frames.push_back({{"frame", f.index},
                       {"keyframe", f.keyframe},
                       {"random_access", f.random_access},
@@ -248,6 +265,7 @@ nlohmann::json ToJson(const std::string& path, size_t size, const Probe& probe) 
                       {"dynamic_gaussians", f.dynamic_count},
                       {"bytes", f.bytes()},
                       {"hash", f.hash},
+                      {"concealed_layers", concealed},
                       {"packets", packets}});
   }
   json gops = json::array();
