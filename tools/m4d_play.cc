@@ -73,6 +73,9 @@ void LogToStderr(void*, int level, const char* message) {
   if (level <= M4D_LOG_WARNING) std::fprintf(stderr, "m4d: %s\n", message);
 }
 
+// Splits a file into packets. A damaged header is skipped to the next header (the decoder,
+// flushed by nothing here, then waits for its next SEQUENCE_HEADER); the first damage is
+// reported in *error, and a file with no packet at all fails.
 bool ReadPackets(const std::string& path, std::vector<std::vector<uint8_t>>* packets,
                  std::string* error) {
   std::vector<uint8_t> bytes;
@@ -82,16 +85,26 @@ bool ReadPackets(const std::string& path, std::vector<std::vector<uint8_t>>* pac
     return false;
   }
   M4dPacketInfo info;
-  for (size_t pos = 0; pos < bytes.size(); pos += info.packet_size) {
+  size_t pos = 0;
+  while (pos < bytes.size()) {
     const int r = m4d_parse_packet_header(&bytes[pos], bytes.size() - pos, &info);
-    if (r != M4D_OK) {
-      *error = path + ": damaged packet header at byte " + std::to_string(pos) + " (" +
-               m4d_error_string(r) + ")";
-      return packets->size() > 0;  // play what precedes the damage
+    if (r == M4D_OK) {
+      packets->emplace_back(bytes.begin() + pos, bytes.begin() + pos + info.packet_size);
+      pos += info.packet_size;
+      continue;
     }
-    packets->emplace_back(bytes.begin() + pos, bytes.begin() + pos + info.packet_size);
+    if (error->empty()) {
+      *error = path +
+               (r == M4D_ERR_AGAIN ? ": truncated: the stream ends inside a packet at byte "
+                                   : ": damaged packet header at byte ") +
+               std::to_string(pos);
+    }
+    if (r == M4D_ERR_AGAIN) break;
+    size_t skip = 0;
+    const int found = m4d_find_packet(&bytes[pos + 1], bytes.size() - pos - 1, &skip, &info);
+    pos = (found == M4D_OK || info.packet_size > 0) ? pos + 1 + skip : bytes.size();
   }
-  return true;
+  return packets->size() > 0;  // play what survives the damage
 }
 
 M4dGaussians View(const m4d::GaussianSet& set) {

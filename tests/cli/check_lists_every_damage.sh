@@ -16,15 +16,15 @@ flip() {
     dd of="$damaged" bs=1 seek="$1" conv=notrunc 2>/dev/null
 }
 # Packet offsets of synth_sh3_three_gops.m4d (m4d_probe --json).
-flip $((67492 + 24 + 1000))   # KEYFRAME_DYNAMIC of frame 0, payload
-flip $((103810 + 24 + 1000))  # MOTION_GRID of frame 2, payload
-flip $((218885 + 8))          # MOTION_GRID of frame 5, header (frame_index)
+flip $((67493 + 24 + 1000))   # KEYFRAME_DYNAMIC of frame 0, payload
+flip $((103811 + 24 + 1000))  # MOTION_GRID of frame 2, payload
+flip $((218887 + 8))          # MOTION_GRID of frame 5, header (frame_index)
 if "$check" "$damaged" > "$dir/check.txt"; then
   echo "a damaged stream passed"
   exit 1
 fi
 cat "$dir/check.txt"
-grep -q '^byte 67492: KEYFRAME_DYNAMIC (frame 0): payload CRC mismatch' "$dir/check.txt"
-grep -q '^byte 103810: MOTION_GRID (frame 2): payload CRC mismatch' "$dir/check.txt"
-grep -q '^byte 218885: packet header: checksum mismatch' "$dir/check.txt"
+grep -q '^byte 67493: KEYFRAME_DYNAMIC (frame 0): payload CRC mismatch' "$dir/check.txt"
+grep -q '^byte 103811: MOTION_GRID (frame 2): payload CRC mismatch' "$dir/check.txt"
+grep -q '^byte 218887: packet header: checksum mismatch' "$dir/check.txt"
 test "$(grep -c '^byte ' "$dir/check.txt")" -eq 3
