@@ -488,14 +488,15 @@ std::vector<Case> Cases() {
          Packet& p = (*s)[kDynamic];
          SetVaruint(&p, PositionCodebookOffset(p), 4097);
        }},
-      {"octree_flag_not_binary", "M4D_ERR_BITSTREAM", "a set's octree flag 2 (version 0.7: 0 or 1)",
+      {"octree_flag_not_binary", "M4D_ERR_BITSTREAM",
+       "a set's octree flag 2 (since version 0.7: 0 or 1)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
          p[24 + GroupOffset(p, 6)] = 2;
          FixCrcs(&p);
        }},
       {"attribute_coding_not_binary", "M4D_ERR_BITSTREAM",
-       "a set's attribute_coding 2 (version 0.8: 0 or 1)",
+       "a set's attribute_coding 2 (since version 0.8: 0 or 1)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
          p[AttributeCodingOffset(p)] = 2;
