@@ -111,10 +111,20 @@ invalid=conformance/invalid
 mkdir -p "$invalid"
 rm -f "$invalid"/*.m4d "$invalid"/*.md5
 "$bin/m4d_make_invalid" -o "$invalid"
-for stream in "$invalid"/*.m4d; do
-  "$bin/m4d_decode" -q --force "$stream" -o "${stream%.m4d}.md5" 2>/dev/null || true
-done
-# A damaged KEYFRAME_DYNAMIC payload is no error for a decoder of the static layer alone, which
-# skips that payload unchecked (spec 6.6).
-"$bin/m4d_decode" -q --force --layers static "$invalid/bad_payload_crc.m4d" -o "$invalid/bad_payload_crc.static.md5"
+# Each stream also decoded with one layer alone (spec 6.6, 6.8): a payload of the layer not
+# output is skipped unchecked, so the first error and the frames may differ; EXPECTED_LAYERS
+# records the reference decoder's first error per layer, <name>.static|dynamic.md5 the frames.
+{
+  echo "# <stream> <first error with --layers static> <first error with --layers dynamic>"
+  for stream in "$invalid"/*.m4d; do
+    "$bin/m4d_decode" -q --force "$stream" -o "${stream%.m4d}.md5" 2>/dev/null || true
+    row=$(basename "$stream" .m4d)
+    for layer in static dynamic; do
+      first=$("$bin/m4d_decode" -q --force --layers "$layer" "$stream" -o "${stream%.m4d}.$layer.md5" \
+        2>&1 >/dev/null | sed -n 's/^first_error //p' | head -1 || true)
+      row="$row ${first:-NONE}"
+    done
+    echo "$row"
+  done
+} >"$invalid/EXPECTED_LAYERS"
 (cd "$invalid" && md5sum ./*.m4d >MANIFEST.md5sum)

@@ -85,6 +85,32 @@ TEST(SpecErrorTable, EveryRowHasItsStreamsAndEveryInvalidStreamARow) {
   }
 }
 
+// Every invalid stream is also expected with one layer alone (spec 6.6, 6.8): a row of
+// invalid/EXPECTED_LAYERS with a first error per layer, and the frames of each.
+TEST(SpecErrorTable, EveryInvalidStreamHasItsLayerExpectations) {
+  const std::map<std::string, std::string> expected = Expected();
+  std::istringstream in(ReadText(kRoot + "/conformance/invalid/EXPECTED_LAYERS"));
+  const std::set<std::string> codes = {"NONE",          "TRUNCATED",        "M4D_ERR_BITSTREAM",
+                                       "M4D_ERR_LIMIT", "M4D_ERR_CHECKSUM", "M4D_ERR_UNSUPPORTED"};
+  std::set<std::string> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string stream, by_static, by_dynamic;
+    fields >> stream >> by_static >> by_dynamic;
+    EXPECT_TRUE(expected.count(stream)) << stream << " is not in invalid/EXPECTED";
+    EXPECT_TRUE(codes.count(by_static) && codes.count(by_dynamic)) << line;
+    for (const char* layer : {"static", "dynamic"}) {
+      EXPECT_TRUE(std::ifstream(kRoot + "/conformance/invalid/" + stream + "." + layer + ".md5"))
+          << stream << ": no ." << layer << ".md5";
+    }
+    rows.insert(stream);
+  }
+  for (const auto& [stream, error] : expected) {
+    EXPECT_TRUE(rows.count(stream)) << stream << " has no row in invalid/EXPECTED_LAYERS";
+  }
+}
+
 // coverage.md's copy: "| E<n> | code | streams |" -> "code | streams".
 std::map<std::string, std::string> CoverageErrorRows() {
   std::istringstream in(ReadText(kRoot + "/bitstream-spec/coverage.md"));

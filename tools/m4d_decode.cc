@@ -225,7 +225,9 @@ int main(int argc, char** argv) {
     }
     inside_frame = !info.end_of_frame;
     if (info.type == M4D_PACKET_SEQUENCE_HEADER) ++gop;
-    if (gop >= opt.start_gop || opt.start_frame >= 0) {
+    // From the start every packet goes to the decoder, also those before the first
+    // SEQUENCE_HEADER: it checks their type before skipping them (bitstream-spec 9, E7, E13).
+    if (opt.start_gop == 0 || gop >= opt.start_gop || opt.start_frame >= 0) {
       const auto t0 = std::chrono::steady_clock::now();
       r = m4d_send_packet(ctx, &data[pos], info.packet_size);
       if (r == M4D_ERR_AGAIN) {

@@ -283,6 +283,94 @@ void DynamicSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
   s->insert(s->begin(), gop.begin(), gop.end());
 }
 
+// Payload offset of the payload_size of the last symbol block of a MOTION_GRID (the last
+// level's values; spec 4.4) with three levels, as the base stream's.
+size_t LastGridBlockPayloadSizeOffset(const Packet& p) {
+  size_t at = 24, values = 0;  // after box_min, box_scale
+  for (int l = 0; l < 3; ++l) {
+    values = SkipSymbolBlock(p, at + 4);  // after step and brick_flags
+    at = SkipSymbolBlock(p, values);
+  }
+  const uint32_t n = ReadVaruint(p, 24 + values);
+  at = values + VaruintLength(p, 24 + values);
+  at += VaruintLength(p, 24 + at);  // min_value
+  for (uint32_t i = 0; i < n;) {
+    const uint32_t f = ReadVaruint(p, 24 + at);
+    at += VaruintLength(p, 24 + at);
+    ++i;
+    if (f == 0) {
+      i += ReadVaruint(p, 24 + at);
+      at += VaruintLength(p, 24 + at);
+    }
+  }
+  return at;
+}
+
+// A KEYFRAME_STATIC set (SH degree 1) of 64 Gaussians at (100, 100, 100) whose log scales,
+// opacities and SH DC are coded as adaptive_attributes() at 16, 13 and 20 bits: values wider
+// than the bit tree's 8 bits end in bypass bits (spec 5.7).
+Packet AdaptiveWideSet() {
+  constexpr uint32_t kCount = 64;
+  std::vector<uint8_t> payload;
+  m4d::ByteWriter w(&payload);
+  w.WriteVarUint(kCount);
+  const float mins[6] = {100.0f, -6.0f, 0.0f, -4.0f, -1.0f, 0.0f};  // position .. sh_rest
+  const int bits[6] = {0, 16, 0, 13, 20, 0};
+  for (int g = 0; g < 6; ++g) {
+    w.WriteU8(static_cast<uint8_t>(bits[g]));
+    w.WriteU8(0);  // per_component
+    w.WriteF32(mins[g]);
+    w.WriteF32(bits[g] > 0 ? 1.0f / float(1 << (bits[g] - 2)) : 0.0f);  // step
+    w.WriteVarUint(0);                                                  // codebook_size
+  }
+  w.WriteU8(1);  // attribute_coding: adaptive; no Draco attribute is left
+  std::vector<uint32_t> q[3];
+  m4d::AdaptiveField fields[3];
+  const int field_bits[3] = {16, 13, 20}, components[3] = {3, 1, 3};
+  uint32_t x = 12345;
+  for (int f = 0; f < 3; ++f) {
+    for (uint32_t i = 0; i < kCount * components[f]; ++i) {
+      x = x * 1664525u + 1013904223u;
+      // Spread over the whole width, so that bypass bits and contexts vary.
+      q[f].push_back((((i * 997u) << (field_bits[f] - 10)) + (x >> 22)) &
+                     ((1u << field_bits[f]) - 1));
+    }
+    fields[f].components = components[f];
+    fields[f].width = field_bits[f];
+    fields[f].own_context = f != 1;  // log scales and SH DC (spec 5.7)
+    fields[f].limit = 1u << field_bits[f];
+    fields[f].q = q[f].data();
+  }
+  const std::vector<uint8_t> adaptive = m4d::EncodeAdaptiveAttributes(fields, 3, kCount);
+  w.WriteVarUint(static_cast<uint32_t>(adaptive.size()));
+  w.WriteBytes(adaptive);
+  return MakePacket(M4D_PACKET_KEYFRAME_STATIC, 0, false, payload);
+}
+
+// GOP 0 replaced by one of SH degree 0 whose static set holds MAX_GAUSSIANS_PER_SET Gaussians
+// and whose frame 1, a dependent keyframe, adds one more with its STATIC_UPDATE (spec 9, E33).
+void StaticSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
+  Packet sequence = (*s)[kSeq];
+  sequence[24 + 3] = 0;  // sh_degree
+  FixCrcs(&sequence);
+  std::vector<uint8_t> update;
+  m4d::ByteWriter w(&update);
+  w.WriteVarUint(0);  // num_removed
+  w.WriteBytes(ConstantSet(1));
+  Packet mlp = (*s)[kMlp];
+  SetU32(&mlp, 8, 1);
+  FixCrcs(&mlp);
+  Stream gop = {sequence,
+                MakePacket(M4D_PACKET_KEYFRAME_STATIC, 0, false, ConstantSet(1u << 22)),
+                MakePacket(M4D_PACKET_KEYFRAME_DYNAMIC, 0, false, ConstantSet(1)),
+                (*s)[kMlp],
+                MakePacket(M4D_PACKET_STATIC_UPDATE, 1, false, update),
+                MakePacket(M4D_PACKET_KEYFRAME_DYNAMIC, 1, false, ConstantSet(1)),
+                mlp};
+  s->erase(s->begin(), s->begin() + 8);
+  s->insert(s->begin(), gop.begin(), gop.end());
+}
+
 // Payload offset in a set packet of the base stream (SH degree 1, no codebooks) of group g's
 // bits (spec 5.4); g = 6 gives the octree flag's.
 size_t GroupOffset(const Packet& p, int g) {
@@ -488,14 +576,15 @@ std::vector<Case> Cases() {
          Packet& p = (*s)[kDynamic];
          SetVaruint(&p, PositionCodebookOffset(p), 4097);
        }},
-      {"octree_flag_not_binary", "M4D_ERR_BITSTREAM", "a set's octree flag 2 (version 0.7: 0 or 1)",
+      {"octree_flag_not_binary", "M4D_ERR_BITSTREAM",
+       "a set's octree flag 2 (since version 0.7: 0 or 1)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
          p[24 + GroupOffset(p, 6)] = 2;
          FixCrcs(&p);
        }},
       {"attribute_coding_not_binary", "M4D_ERR_BITSTREAM",
-       "a set's attribute_coding 2 (version 0.8: 0 or 1)",
+       "a set's attribute_coding 2 (since version 0.8: 0 or 1)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
          p[AttributeCodingOffset(p)] = 2;
@@ -619,6 +708,86 @@ std::vector<Case> Cases() {
        "num_removed one more than the removal flags set",
        [](Stream* s, std::vector<uint8_t>*) {
          SetVaruint(&(*s)[kComp], 0, ReadVaruint((*s)[kComp], 24) + 1);
+       }},
+      // Branches of the reading process and of the check order (spec 3, 9's Order).
+      {"payload_size_grown", "M4D_ERR_BITSTREAM",
+       "GOP 0's KEYFRAME_DYNAMIC declares 30 bytes more (the next header's first 30, CRCs "
+       "updated): its bytes left over are a layer error; reading resumes right after its header "
+       "and finds MLP_WEIGHTS",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         std::vector<uint8_t> grown(p.begin() + 24, p.end());
+         grown.insert(grown.end(), (*s)[kMlp].begin(), (*s)[kMlp].begin() + 30);
+         SetU32(&p, 12, static_cast<uint32_t>(grown.size()));
+         SetU32(&p, 16, m4d::Crc32(grown.data(), grown.size()));
+         SetU32(&p, 20, m4d::Crc32(p.data(), 20));
+       }},
+      {"ends_inside_frame_unconfigured", "TRUNCATED",
+       "only frame 1 and frame 2's MOTION_GRID: skipped with no configuration, the last header "
+       "has no end_of_frame",
+       [](Stream* s, std::vector<uint8_t>*) {
+         *s = Stream(s->begin() + kMotion, s->begin() + kMotion + 3);
+       }},
+      {"sequence_header_end_of_frame_inside_frame", "M4D_ERR_BITSTREAM",
+       "GOP 1's SEQUENCE_HEADER inside frame 2 with end_of_frame set: E8 before E12, so GOP 1 "
+       "is not decoded",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->erase(s->begin() + kComp + 2);
+         (*s)[kComp + 2][5] = 1;
+         FixCrcs(&(*s)[kComp + 2]);
+       }},
+      {"faults_reserved_and_payload_size", "M4D_ERR_BITSTREAM",
+       "frame 1's COMPENSATION header with reserved 1 and payload_size 2^26 + 1 (header CRC "
+       "updated): E5 before E6",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kComp];
+         p[6] = 1;
+         SetU32(&p, 12, (1u << 26) + 1);
+         SetU32(&p, 20, m4d::Crc32(p.data(), 20));
+       }},
+      {"unknown_type_before_sequence_header", "M4D_ERR_UNSUPPORTED",
+       "a packet of type 9 before the first SEQUENCE_HEADER: E7 before the skip of E13",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet p = (*s)[kMotion];
+         p[4] = 9;
+         FixCrcs(&p);
+         s->insert(s->begin(), p);
+       }},
+      {"faults_order_and_payload_crc", "M4D_ERR_BITSTREAM",
+       "frame 1's MOTION_GRID missing and its COMPENSATION's payload CRC wrong: E9 before E14",
+       [](Stream* s, std::vector<uint8_t>*) {
+         s->erase(s->begin() + kMotion);
+         (*s)[kMotion].back() ^= 0x21;
+       }},
+      {"faults_payload_crc_and_trailing_byte", "M4D_ERR_CHECKSUM",
+       "a byte after a gaussian_set(), the payload CRC not updated: E14 before E15",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kDynamic];
+         const uint32_t crc = ByteReaderU32(p, 16);
+         p.push_back(0);
+         FixCrcs(&p);
+         SetU32(&p, 16, crc);
+         SetU32(&p, 20, m4d::Crc32(p.data(), 20));
+       }},
+      {"entropy_rans_payload_short", "M4D_ERR_BITSTREAM",
+       "the last rANS payload of a MOTION_GRID one byte short: decoding needs a byte past it",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         const size_t at = LastGridBlockPayloadSizeOffset(p);
+         const uint32_t size = ReadVaruint(p, 24 + at);
+         p.pop_back();
+         SetVaruint(&p, at, size - 1);
+       }},
+      {"static_set_above_limit", "M4D_ERR_LIMIT",
+       "a STATIC_UPDATE adds a Gaussian to a static set of MAX_GAUSSIANS_PER_SET (2^22) constant "
+       "ones",
+       StaticSetAboveLimit},
+      {"adaptive_wide_values", "TRUNCATED",
+       "GOP 0's static set coded adaptively at 16, 13 and 20 bits (bypass bits past the tree's "
+       "8; valid, every frame output), then the stream ends 5 bytes into a header",
+       [](Stream* s, std::vector<uint8_t>* tail) {
+         (*s)[kStatic] = AdaptiveWideSet();
+         *tail = Packet((*s)[kSeq].begin(), (*s)[kSeq].begin() + 5);
        }},
   };
 }

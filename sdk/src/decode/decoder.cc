@@ -186,7 +186,15 @@ Status Decoder::Dispatch(const PacketHeader& h, const uint8_t* payload, bool* la
     }
     return Status::Ok();
   }
-  if (h.type == M4D_PACKET_SEQUENCE_HEADER) return DecodeSequenceHeader(h, payload);
+  if (h.type == M4D_PACKET_SEQUENCE_HEADER) {
+    // Its end_of_frame is a packet-order check (E8), made before it is decoded and before a
+    // frame it cuts is reported (E12): rejected, it drops the state as any order error.
+    if (h.end_of_frame()) {
+      return BitstreamError("SEQUENCE_HEADER (frame " + std::to_string(h.frame_index) +
+                            "): wrong end_of_frame flag");
+    }
+    return DecodeSequenceHeader(h, payload);
+  }
   M4D_RETURN_IF_ERROR(CheckOrder(h));
   const bool is_static = h.type == M4D_PACKET_KEYFRAME_STATIC || h.type == M4D_PACKET_STATIC_UPDATE;
   if (is_static && background_) static_known_ = false;
