@@ -19,7 +19,7 @@ m4d=build/release/tools/m4d/m4d
 build/release/tools/m4d_decode --force out/default.m4d -o out/default.md5
 # The player's view: the SDK decodes and renders the held-out camera with OpenGL ES (headless).
 mkdir -p out/default-play
-build/release/tools/m4d_play out/default.m4d --capture out/default-scene -o out/default-play \
+build/release/tools/m4d_play out/default.m4d --capture out/default-scene -o out/default-play --force \
   --mp4 out/default-play.mp4 | tail -3
 echo "per-frame hashes of the SDK's decode: out/default.md5; report: out/default.m4d.json"
 echo "held-out view (truth | decoded render | difference x4): out/default-views/ (PNG, views.mp4)"

@@ -71,7 +71,7 @@ test('decodes every grid channel count as the native decoder does', () => {
   try {
     for (const grid of ['8,3,16,5,12,6,8,7', '16,1,8,2,8,4,16,8']) {
       const stream = join(dir, 'grid.m4d');
-      execFileSync(join(tools, 'm4d_synth'), ['-o', stream, '--gops', '1', '--frames-per-gop', '3',
+      execFileSync(join(tools, 'm4d_synth'), ['-o', stream, '--force', '--gops', '1', '--frames-per-gop', '3',
         '--static', '50', '--dynamic', '3000', '--grid', grid, '--motion-fraction', '0.5']);
       const expected = execFileSync(join(tools, 'm4d_decode'), [stream], { stdio: ['ignore', 'pipe', 'ignore'] })
         .toString().split('\n').filter(Boolean);
