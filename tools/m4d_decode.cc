@@ -69,6 +69,13 @@ const char* ErrorName(int code) {
   }
 }
 
+// ".partial.NAME" beside `path`.
+std::string PartialPath(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  const size_t name = slash == std::string::npos ? 0 : slash + 1;
+  return path.substr(0, name) + ".partial." + path.substr(name);
+}
+
 const char* ConcealedLayers(uint32_t layers) {
   if (layers == M4D_LAYER_ALL) return "both layers";
   return layers == M4D_LAYER_STATIC ? "static layer" : "dynamic layer";
@@ -148,12 +155,6 @@ int main(int argc, char** argv) {
                  std::strerror(errno));
     return 1;
   }
-  FILE* out = stdout;
-  if (!opt.output.empty() && !(out = std::fopen(opt.output.c_str(), "w"))) {
-    std::fprintf(stderr, "m4d_decode: cannot write %s: %s\n", opt.output.c_str(),
-                 std::strerror(errno));
-    return 1;
-  }
 
   M4dSettings settings;
   m4d_default_settings(&settings);
@@ -182,6 +183,16 @@ int main(int argc, char** argv) {
       m4d_close(&ctx);
       return 1;
     }
+  }
+  FILE* out = stdout;
+  // The hash lines go to a partial file renamed at the end: an interrupted run leaves no
+  // file that looks complete.
+  const std::string partial = PartialPath(opt.output);
+  if (!opt.output.empty() && !(out = std::fopen(partial.c_str(), "w"))) {
+    std::fprintf(stderr, "m4d_decode: cannot write %s: %s\n", opt.output.c_str(),
+                 std::strerror(errno));
+    m4d_close(&ctx);
+    return 1;
   }
   double decode_ms = 0;
   M4dPacketInfo info;
@@ -249,7 +260,13 @@ int main(int argc, char** argv) {
   M4dStreamInfo stream;
   const bool configured = m4d_get_stream_info(ctx, &stream) == M4D_OK;
   m4d_close(&ctx);
-  if (out != stdout) std::fclose(out);
+  if (out != stdout &&
+      (std::fclose(out) != 0 || std::rename(partial.c_str(), opt.output.c_str()))) {
+    std::fprintf(stderr, "m4d_decode: cannot write %s: %s\n", opt.output.c_str(),
+                 std::strerror(errno));
+    std::remove(partial.c_str());
+    return 1;
+  }
   if (opt.start_gop > 0 && gop < opt.start_gop) {
     std::fprintf(stderr,
                  "m4d_decode: cannot start at GOP %d: the stream has %d random-access GOPs\n",

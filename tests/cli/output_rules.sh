@@ -39,6 +39,8 @@ echo kept > "$dir/hashes.md5"
 expect 2 "$bin/m4d_decode" "$stream" -o "$dir/hashes.md5"
 kept "$dir/hashes.md5"
 expect 0 "$bin/m4d_decode" -q "$stream" -o "$dir/hashes.md5" --force
+grep -q '^0 [0-9a-f]\{32\}$' "$dir/hashes.md5" || fail "m4d_decode -o wrote no hash lines"
+ls -a "$dir" | grep -q partial && fail "m4d_decode left its partial file: $(ls -a "$dir")"
 
 # A frame the stream does not hold: nothing written, no folder created.
 expect 1 "$bin/m4d_export" "$stream" -o "$dir/export" --frames 40
