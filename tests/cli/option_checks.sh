@@ -48,6 +48,14 @@ expect 1 "$m4d" encode "$dir/scene" -o /proc/m4d_cannot_write_here/out.m4d
 says 'I/O error'
 ! grep -q 'invalid argument' "$dir/err.txt" || fail "an I/O error said 'invalid argument'"
 
+# m4d train's outputs and m4d scene's folder are kept unless --force, refused before any work.
+: > "$dir/model.ply"
+expect 2 "$m4d" train "$dir/scene" --ply "$dir/model.ply"
+says 'give --force'
+[ ! -s "$dir/model.ply" ] || fail "m4d train replaced an existing --ply"
+expect 2 "$m4d" scene -o "$dir/scene" --cameras 4 --width 32 --height 24 --frames 1
+says 'give --force'
+
 # A transforms.json with NaN, a number too large or cut short: its line and column and why.
 mkdir -p "$dir/bad"
 printf '{\n  "fl_x": NaN\n}\n' > "$dir/bad/transforms.json"

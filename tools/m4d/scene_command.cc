@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -50,6 +51,7 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
   struct Arguments {
     SyntheticSceneOptions scene;
     std::string output;
+    bool force = false;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* cmd = app->add_subcommand("scene", "write the built-in synthetic scene");
@@ -76,7 +78,16 @@ void AddSceneCommand(CLI::App* app, int* exit_code) {
       ->check(m4d::AtLeast(0))
       ->capture_default_str();
   AddRealismOptions(cmd, &s.realism);
+  cmd->add_flag("-f,--force", args->force, "write into a folder that already holds files");
   cmd->callback([args, exit_code]() {
+    std::error_code ec;
+    if (!args->force && std::filesystem::is_directory(args->output, ec) &&
+        !std::filesystem::is_empty(args->output, ec)) {
+      ReportStatus("scene", Status(M4D_ERR_INVALID_ARG,
+                                   args->output + " holds files: give --force to write over them"));
+      *exit_code = 2;  // found before any work, from the command line
+      return;
+    }
     const auto start = std::chrono::steady_clock::now();
     Status status = WriteSyntheticScene(args->scene, args->output, [](int done, int count) {
       ShowStatus(stderr, "rendering frame " + std::to_string(done) + "/" + std::to_string(count));

@@ -10,6 +10,7 @@
 #include "capture_arguments.h"
 #include "command_status.h"
 #include "common/byte_writer.h"
+#include "existing_output.h"
 #include "image/png_io.h"
 #include "io/atomic_file.h"
 #include "layers/gaussian_set_writer.h"
@@ -56,6 +57,7 @@ struct TrainArguments {
   std::string ply;     // the model (empty: none)
   std::string render;  // the held-out view beside its ground truth (empty: none)
   std::string curve;   // CSV of held-out quality over time (empty: none)
+  bool force = false;  // replace those files when they exist
   std::vector<double> curve_minutes = {1, 2, 5, 10, 15, 20};
 };
 
@@ -306,7 +308,19 @@ void AddTrainCommand(CLI::App* app, int* exit_code) {
       ->delimiter(',')
       ->check(m4d::Within(0.0, 1e6))
       ->capture_default_str();
-  cmd->callback([args, exit_code]() { *exit_code = ReportStatus("train", RunTrain(*args)); });
+  cmd->add_flag("-f,--force", args->force, "replace an existing --ply, --render or --curve file");
+  cmd->callback([args, exit_code]() {
+    // Outputs are checked before the minutes of training, from the command line: exit 2.
+    for (const std::string* path : {&args->ply, &args->render, &args->curve}) {
+      const Status may_write = RefuseExistingOutput(*path, args->force || path->empty());
+      if (!may_write.ok()) {
+        ReportStatus("train", may_write);
+        *exit_code = 2;
+        return;
+      }
+    }
+    *exit_code = ReportStatus("train", RunTrain(*args));
+  });
 }
 
 }  // namespace m4d
