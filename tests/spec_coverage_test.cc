@@ -5,6 +5,7 @@
 // feature, and every feature the walk knows must have a row.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include <draco/compression/decode.h>
+#include <draco/compression/entropy/rans_symbol_decoder.h>
 #include <draco/core/decoder_buffer.h>
 
 #include "common/byte_reader.h"
@@ -181,7 +183,11 @@ struct Walk {
       // Draco holds the positions alone, when they are neither constant nor in the octree.
       const bool draco_present = position_bits > 0 && !octree_used;
       Add(draco_present ? "adaptive,draco=positions" : "adaptive,draco=absent");
-      if (draco_present) r->Skip(r->VarUint());
+      if (draco_present) {
+        const uint32_t draco = r->VarUint();
+        DracoPayload(r->Here(), draco);
+        r->Skip(draco);
+      }
       Add(rotation_bits > 0 ? "rotation=smallest_three" : "rotation=smallest_three,bits=0");
       return count;
     }
@@ -192,6 +198,7 @@ struct Walk {
     } else if (rotation_bits > 0) {
       Add("rotation=four_components");
     }
+    DracoPayload(r->Here(), draco);
     r->Skip(draco);
     return count;
   }
@@ -241,6 +248,60 @@ struct Walk {
     r->Skip(reader.position());
     for (uint32_t i = 1; i < count; ++i) {
       if (std::equal(&q[3 * i], &q[3 * i] + 3, &q[3 * (i - 1)])) Add("octree_repeats>0");
+    }
+  }
+
+  // 5.5: a Draco payload's attributes, walked to their tagged symbols, whose tags the walk
+  // decodes with Draco's rANS decoder: tag bits past the payload's end (they read as 0, the
+  // next field starts at the end) and tags all 0 (no bit read, the next field starts at
+  // tag_bits' first byte).
+  void DracoPayload(const uint8_t* payload, uint32_t size) {
+    if (payload == nullptr || size <= 16) return;  // no attribute
+    Reader r(payload, size);
+    r.Skip(11);  // magic, version, encoder type, method, flags
+    const uint32_t count = r.U32();
+    r.Skip(1);  // num_attribute_decoders
+    const uint32_t num_attributes = r.U8();
+    std::vector<uint32_t> components(num_attributes);
+    for (uint32_t& c : components) {
+      r.Skip(2);  // attribute_type, data_type
+      c = r.U8();
+      r.Skip(2);  // normalized, unique_id
+    }
+    r.Skip(num_attributes);  // decoder types
+    for (uint32_t j = 0; j < num_attributes; ++j) {
+      const bool delta = r.U8() == 0;
+      r.Skip(delta ? 2 : 1);  // transform, compressed
+      if (r.U8() == 1) {      // raw
+        r.Skip(1);            // bit_length
+        DracoFrequencies(&r, r.VarUint());
+        r.Skip(r.VarUint());
+      } else {
+        draco::DecoderBuffer buffer;
+        buffer.Init(reinterpret_cast<const char*>(payload + size - r.remaining()), r.remaining(),
+                    DRACO_BITSTREAM_VERSION(2, 3));
+        draco::RAnsSymbolDecoder<5> tags;
+        ASSERT_TRUE(tags.Create(&buffer) && tags.StartDecoding(&buffer));
+        r.Skip(buffer.decoded_size());
+        uint64_t bits = 0;
+        for (uint32_t i = 0; i < count; ++i) bits += uint64_t{tags.DecodeSymbol()} * components[j];
+        if (bits == 0) Add("draco_tags_all_zero");
+        if (bits > 8 * uint64_t{r.remaining()}) Add("draco_tag_bits_past_payload");
+        r.Skip(std::min<uint64_t>((bits + 7) / 8, r.remaining()));
+      }
+      if (delta) r.Skip(8);  // wrap_min, wrap_max
+    }
+    EXPECT_TRUE(r.done()) << "Draco payload not consumed";
+  }
+
+  static void DracoFrequencies(Reader* r, uint32_t n) {
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t t = r->U8();
+      if ((t & 3) == 3) {
+        i += t >> 2;  // a run of zeros
+      } else {
+        r->Skip(t & 3);
+      }
     }
   }
 

@@ -9,6 +9,7 @@
 // --valid-dir it writes instead the valid streams at the edges of the rules (edit_*: frame
 // numbers that wrap, a non-minimal varuint, a rANS state that starts below L).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -16,6 +17,9 @@
 #include <string>
 #include <vector>
 
+#include <draco/compression/config/compression_shared.h>
+#include <draco/compression/entropy/symbol_decoding.h>
+#include <draco/core/decoder_buffer.h>
 #include <draco/core/draco_types.h>
 
 #include "bitstream/packet_header.h"
@@ -39,10 +43,11 @@ enum : size_t { kSeq = 0, kStatic = 1, kDynamic = 2, kMlp = 3, kMotion = 4, kCom
 
 // Its sets keep every attribute in Draco, whose payload many cases damage (version 0.8's
 // adaptive attributes have cases of their own, AdaptiveCodebookSet).
-bool MakeBase(int version_minor, Stream* out, int opacity_bits = 8) {
+bool MakeBase(int version_minor, Stream* out, int opacity_bits = 8, int sh_rest_bits = 5) {
   m4d::StreamWriterOptions options;
   options.sequence.version_minor = version_minor;
   options.quantization.opacity_bits = opacity_bits;
+  options.quantization.sh_rest_bits = sh_rest_bits;
   options.quantization.attribute_coding = m4d::AttributeCoding::kDraco;
   options.compensation_quantization.attribute_coding = m4d::AttributeCoding::kDraco;
   options.sequence.sh_degree = 1;
@@ -395,6 +400,100 @@ void DracoValuesTruncated(Stream* s, std::vector<uint8_t>*) {
   const size_t opacity = p[24 + GroupOffset(p, 6)] == 1 ? 3 : 4;
   p[Find(p, "DRACO") + 17 + 5 * opacity + 1] = draco::DT_UINT8;
   FixCrcs(&p);
+}
+
+// One attribute of a set packet's Draco payload (spec 5.5), as packet offsets.
+struct DracoAttribute {
+  size_t symbols = 0, symbols_end = 0;  // draco_symbols()
+  size_t tag_bits = 0;                  // tagged: where tag_bits starts
+  bool tagged = false, delta = false;
+};
+
+// Skips a Draco rANS frequency table of `n` entries at packet offset `at`.
+size_t SkipDracoFrequencies(const Packet& p, size_t at, uint32_t n) {
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint8_t t = p[at++];
+    if ((t & 3) == 3) {
+      i += t >> 2;
+    } else {
+      at += t & 3;
+    }
+  }
+  return at;
+}
+
+// The attributes of the Draco payload of set packet p (ending at *end), or none where the
+// payload does not walk (Draco decodes the tagged values to find where they end).
+std::vector<DracoAttribute> DracoAttributes(const Packet& p, size_t* end) {
+  const size_t start = Find(p, "DRACO");
+  size_t size_at = start - 1;
+  while (p[size_at - 1] & 0x80) --size_at;
+  *end = start + ReadVaruint(p, size_at);
+  const uint32_t count = ByteReaderU32(p, start + 11);
+  const size_t num_attributes = p[start + 16];
+  size_t at = start + 17 + 6 * num_attributes;  // descriptors, decoder types
+  std::vector<DracoAttribute> attributes(num_attributes);
+  std::vector<uint32_t> values;
+  for (size_t j = 0; j < num_attributes; ++j) {
+    DracoAttribute& a = attributes[j];
+    const int components = p[start + 17 + 5 * j + 2];
+    a.delta = p[at++] == draco::PREDICTION_DIFFERENCE;
+    if (a.delta) ++at;  // transform
+    ++at;               // compressed
+    a.symbols = at;
+    a.tagged = p[at] == draco::SYMBOL_CODING_TAGGED;
+    if (a.tagged) {
+      const uint32_t num_tags = ReadVaruint(p, at + 1);
+      at = SkipDracoFrequencies(p, at + 1 + VaruintLength(p, at + 1), num_tags);
+      a.tag_bits = at + VaruintLength(p, at) + ReadVaruint(p, at);
+      draco::DecoderBuffer buffer;
+      buffer.Init(reinterpret_cast<const char*>(&p[a.symbols]), *end - a.symbols,
+                  DRACO_BITSTREAM_VERSION(2, 3));
+      values.resize(static_cast<size_t>(count) * components);
+      if (!draco::DecodeSymbols(count * components, components, &buffer, values.data())) return {};
+      at = a.symbols + buffer.decoded_size();
+    } else {
+      const uint32_t num_symbols = ReadVaruint(p, at + 2);
+      at = SkipDracoFrequencies(p, at + 2 + VaruintLength(p, at + 2), num_symbols);
+      at += VaruintLength(p, at) + ReadVaruint(p, at);
+    }
+    a.symbols_end = at;
+    if (a.delta) at += 8;  // wrap_min, wrap_max
+  }
+  if (at != *end) return {};
+  return attributes;
+}
+
+// A static keyframe set whose SH rest (the Draco payload's last attribute) is written at 16
+// bits, which Draco codes with the tagged scheme and no prediction (the writer predicts groups
+// over 16 bits, whose wrap bounds would follow the tag bits). Its payload loses its last 2
+// bytes, the last tag bits, which read as 0 (spec 5.5). And the first attribute with difference
+// prediction (SH DC) is recoded with tags all 0 (one tag symbol of frequency 4096, a 1-byte rANS
+// payload of state L): no tag bit is read, wrap_min follows the tags' payload, every value is
+// wrap_min.
+void DracoTagBitsCut(Stream* s, std::vector<uint8_t>*) {
+  s->clear();
+  Stream base;
+  if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base, 8, 16)) return;
+  Packet p = base[kStatic];
+  size_t end;
+  const std::vector<DracoAttribute> attributes = DracoAttributes(p, &end);
+  if (attributes.size() < 2) return;
+  const DracoAttribute& last = attributes.back();
+  constexpr size_t kCut = 2;
+  if (!last.tagged || last.delta || last.tag_bits + kCut >= end) return;
+  p.erase(p.begin() + end - kCut, p.begin() + end);
+  auto zero = std::find_if(attributes.begin(), attributes.end() - 1,
+                           [](const DracoAttribute& a) { return a.delta; });
+  if (zero == attributes.end() - 1) return;
+  const uint8_t all_zero[] = {draco::SYMBOL_CODING_TAGGED, 1, 0x01, 0x40, 1, 0x00};
+  p.erase(p.begin() + zero->symbols, p.begin() + zero->symbols_end);
+  p.insert(p.begin() + zero->symbols, all_zero, all_zero + sizeof(all_zero));
+  const size_t draco_size =
+      end - kCut - (zero->symbols_end - zero->symbols) + sizeof(all_zero) - Find(p, "DRACO");
+  SetVaruint(&p, AttributeCodingOffset(p) + 1 - 24, static_cast<uint32_t>(draco_size));
+  base[kStatic] = p;
+  *s = base;
 }
 
 // An APPEARANCE packet of frame 1 (spec 4.7) for its 80 dynamic Gaussians, or `values` of them.
@@ -813,6 +912,11 @@ std::vector<Case> ValidEdits() {
        "a static keyframe set's opacity coded at 9 bits, declared 8 bits with UINT8 Draco values: "
        "each value's low 8 bits count (spec 5.5)",
        DracoValuesTruncated},
+      {"edit_draco_tag_bits_cut", "",
+       "a static keyframe set's SH rest at 16 bits (Draco's tagged scheme, no prediction, its "
+       "last attribute) with the last 2 bytes of the Draco payload cut: those tag bits read as "
+       "0; and its SH DC recoded with every tag 0: no tag bit read (spec 5.5)",
+       DracoTagBitsCut},
       {"edit_rans_initial_state_low", "",
        "level 0's brick flags (one 1) recoded with rANS from the initial state 2^15, below "
        "L_RANS: legal, the same frames",
@@ -856,6 +960,11 @@ int main(int argc, char** argv) {
       Stream stream = base;
       std::vector<uint8_t> tail;
       c.edit(&stream, &tail);
+      if (stream.empty()) {
+        std::fprintf(stderr, "m4d_make_invalid: %s: the base stream does not fit the edit\n",
+                     c.name);
+        return 1;
+      }
       if (!WriteStream(valid_dir + "/" + c.name + ".m4d", stream, tail)) return 1;
       std::printf("%s: %s\n", c.name, c.what);
     }
