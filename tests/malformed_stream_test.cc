@@ -233,6 +233,30 @@ TEST_F(MalformedStream, DecodingResumesAtTheNextGopAfterAnError) {
   for (size_t i = 1; i < 4; ++i) EXPECT_EQ(r.hashes[i], stream_->recon_hashes[i + 2]);
 }
 
+// The frame a damaged COMPENSATION completes is output, concealed, with that packet's props.
+TEST_F(MalformedStream, AConcealedFrameCarriesThePropsOfItsLastPacket) {
+  std::vector<Packet> packets = stream_->packets;
+  packets[5][40] ^= 0xff;  // frame 1's COMPENSATION payload (CRC now wrong)
+  M4dContext* ctx = nullptr;
+  M4dSettings settings = DefaultSettings();
+  ASSERT_EQ(m4d_open(&ctx, &settings), M4D_OK);
+  std::vector<int64_t> timestamps;
+  for (size_t i = 0; i < 6; ++i) {
+    M4dDataProps props;
+    m4d_default_data_props(&props);
+    props.timestamp = static_cast<int64_t>(i);
+    const int r = m4d_send_packet_props(ctx, packets[i].data(), packets[i].size(), &props);
+    EXPECT_EQ(r, i == 5 ? M4D_ERR_CHECKSUM : M4D_OK);
+    M4dFrame frame;
+    while (m4d_get_frame(ctx, &frame) == M4D_OK) {
+      timestamps.push_back(frame.props.timestamp);
+      m4d_frame_unref(&frame);
+    }
+  }
+  m4d_close(&ctx);
+  EXPECT_EQ(timestamps, (std::vector<int64_t>{3, 5}));
+}
+
 // A damaged payload loses its layer, not the GOP (spec 6.8): the dynamic layer freezes at
 // frame 0 for the rest of the GOP, flagged, and the static layer stays exact.
 TEST_F(MalformedStream, ADamagedMotionGridFreezesTheDynamicLayerUntilTheNextKeyframe) {

@@ -203,7 +203,7 @@ int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
   c->last_error.clear();
   try {
     const m4d::Status status = c->decoder->SendPacket(data, size);
-    if (!status.ok()) return Fail(c, status.code(), status.message());
+    // A rejected packet may still complete a frame (a damaged payload, spec 6.8).
     if (c->decoder->HasFrame()) {
       if (props) {
         c->frame_props = *props;
@@ -211,6 +211,7 @@ int m4d_send_packet_props(M4dContext* c, const uint8_t* data, size_t size,
         m4d_default_data_props(&c->frame_props);
       }
     }
+    if (!status.ok()) return Fail(c, status.code(), status.message());
   } catch (const std::bad_alloc&) {
     c->decoder->Flush();
     return Fail(c, M4D_ERR_NOMEM, "out of memory while decoding a packet");
