@@ -1,0 +1,207 @@
+// Example: an M4D stream played in a three.js scene through Spark (M4dSparkAdapter), beside an
+// ordinary three.js mesh. The stream is decoded on the main thread with m4d.mjs (loadM4d);
+// each decoded frame becomes a SplatFrame (owned copies) that the adapter shows.
+//
+// Query parameters:
+//   stream=URL     the stream (default ../../../out/default.m4d)
+//   module=URL     the directory of m4d.mjs (default ../../../build/web/module/)
+//   cameras=URL    a capture's transforms.json; camera=N looks through its camera N (else an
+//                  orbit around the first frame's dynamic layer)
+//   width, height  drawing size (default 960x540); autoplay=0 starts paused
+//   mesh=0         leaves the three.js mesh out
+//   spark=default  Spark's own renderer settings (else m4dSparkRendererOptions(): as M4D's)
+import * as THREE from 'three';
+import * as spark from '@sparkjsdev/spark';
+import {
+  M4dSparkAdapter, camerasOfTransforms, fitCaptureCamera, m4dSparkRendererOptions, splatFrameOfM4dFrame,
+} from '../../adapters/spark_adapter.mjs';
+
+const params = new URLSearchParams(location.search);
+const $ = (id) => document.getElementById(id);
+const width = Number(params.get('width')) || 960;
+const height = Number(params.get('height')) || 540;
+const canvas = $('view');
+
+const moduleUrl = new URL(params.get('module') || '../../../build/web/module/', location.href);
+const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href);
+const m4d = await loadM4d();
+const decoder = m4d.openDecoder();
+
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
+renderer.setPixelRatio(1);
+renderer.setSize(width, height, false);
+renderer.setClearColor(0x000000, 1);
+const scene = new THREE.Scene();
+const camera = new THREE.PerspectiveCamera(50, width / height, 0.05, 1000);
+scene.add(camera);
+const sparkRenderer = new spark.SparkRenderer({ renderer, ...(params.get('spark') === 'default' ? {} : m4dSparkRendererOptions()) });
+scene.add(sparkRenderer);
+const adapter = new M4dSparkAdapter({ THREE, spark, parent: scene });
+
+// Compositing: a lit box that the splats sort against through the depth buffer.
+const box = new THREE.Mesh(new THREE.BoxGeometry(1, 1, 1), new THREE.MeshStandardMaterial({ color: 0x3080ff }));
+scene.add(new THREE.AmbientLight(0xffffff, 0.6), new THREE.DirectionalLight(0xffffff, 1.5));
+if (params.get('mesh') !== '0') scene.add(box);
+
+const state = {
+  playing: params.get('autoplay') !== '0', ended: false, frame: null, firstIndex: null,
+  nextDue: 0, cameras: [], camera: null, orbit: null, splatState: {}, updateMs: 0, drawMs: 0,
+};
+
+async function streamInto(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+  const reader = response.body.getReader();
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    decoder.push(value);
+  }
+  decoder.end();
+}
+
+// The orbit: around the dynamic layer's mean, three times its spread away; the box beside it.
+function setUpOrbit(layer) {
+  const centre = new THREE.Vector3();
+  for (let i = 0; i < layer.count; ++i) centre.add(new THREE.Vector3().fromArray(layer.positions, 3 * i));
+  if (layer.count) centre.divideScalar(layer.count);
+  let sq = 0;
+  for (let i = 0; i < layer.count; ++i) sq += centre.distanceToSquared(new THREE.Vector3().fromArray(layer.positions, 3 * i));
+  const spread = layer.count ? Math.sqrt(sq / layer.count) : 1;
+  state.orbit = { centre, distance: 3 * spread, yaw: 0 };
+  const up = decoder.streamInfo()?.upAxis ?? [0, -1, 0];
+  adapter.setUpAxis(up);
+  box.scale.setScalar(0.4 * spread);
+  box.position.copy(centre).applyMatrix4(adapter.root.matrixWorld).add(new THREE.Vector3(1.2 * spread, 0, 0));
+}
+
+function placeCamera() {
+  const capture = state.cameras[state.camera];
+  if (capture) {
+    adapter.applyCaptureCamera(camera, fitCaptureCamera(capture, width, height), width, height);
+    return;
+  }
+  if (!state.orbit) return;
+  const { centre, distance, yaw } = state.orbit;
+  const target = centre.clone().applyMatrix4(adapter.root.matrixWorld);
+  camera.position.set(target.x + distance * Math.sin(yaw), target.y + 0.3 * distance, target.z + distance * Math.cos(yaw));
+  camera.up.set(0, 1, 0);
+  camera.lookAt(target);
+  camera.updateMatrixWorld(true);
+}
+
+// Decodes the next frame (looping at the end) and hands it to the adapter.
+function advance() {
+  let frame = decoder.nextFrame();
+  if (!frame && state.ended && state.frame) {
+    decoder.seek(state.firstIndex);
+    frame = decoder.nextFrame();
+  }
+  if (!frame) return false;
+  show(frame);
+  return true;
+}
+
+function show(frame) {
+  const splatFrame = splatFrameOfM4dFrame(frame, state.splatState);
+  if (!state.orbit) setUpOrbit(frame.dynamic.count ? frame.dynamic : frame.static);
+  state.updateMs = adapter.update(splatFrame).ms;
+  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe, staticChanged: splatFrame.staticChanged };
+  if (state.firstIndex === null) state.firstIndex = frame.frameIndex;
+}
+
+function draw() {
+  placeCamera();
+  const start = performance.now();
+  renderer.render(scene, camera);
+  state.drawMs = performance.now() - start;
+}
+
+function tick(now) {
+  const period = 1000 / (decoder.streamInfo()?.fps || 30);
+  if ((state.playing && now >= state.nextDue) || !state.frame) {
+    if (advance()) state.nextDue = Math.max(now, state.nextDue + period);
+  }
+  if (state.orbit && state.camera === null && state.playing) state.orbit.yaw += 0.003;
+  // Paused, a frame is drawn again only when Spark asks (a finished sort).
+  if (state.playing || sparkRenderer.dirty || !state.drawn) {
+    draw();
+    state.drawn = true;
+  }
+  if (state.frame) {
+    $('frame').textContent = `frame ${state.frame.index}${state.frame.isKeyframe ? ' (key)' : ''}`;
+    const s = adapter.stats;
+    $('readout').textContent = `update ${state.updateMs.toFixed(1)} ms   draw ${state.drawMs.toFixed(1)} ms   ` +
+      `${s.staticCount} static + ${s.dynamicCount} dynamic splats   static uploads ${s.staticUploads}`;
+  }
+  requestAnimationFrame(tick);
+}
+
+$('play').textContent = state.playing ? 'Pause' : 'Play';
+$('play').onclick = () => {
+  state.playing = !state.playing;
+  $('play').textContent = state.playing ? 'Pause' : 'Play';
+};
+
+// For tests and benchmarks.
+window.m4dSpark = {
+  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, state,
+  // Pauses, shows frame `index` (seeking when it is not the next one), lets Spark finish
+  // generating and sorting for the current camera, draws; resolves with the frame index.
+  async showFrame(index) {
+    state.playing = false;
+    if (!state.frame || ((state.frame.index + 1) >>> 0) !== index) {
+      if (!decoder.seek(index)) throw new Error(`frame ${index}: not available`);
+    }
+    const frame = decoder.nextFrame();
+    if (!frame) throw new Error(`frame ${index}: not decoded (${decoder.errors.lastMessage})`);
+    show(frame);
+    await this.settle();
+    return state.frame.index;
+  },
+  // Runs Spark's update (splat generation and the depth sort) to completion, then draws.
+  async settle() {
+    placeCamera();
+    // Spark skips a new generation while a sort of the previous one runs: wait for it first.
+    const idle = async () => {
+      while (sparkRenderer.sorting || sparkRenderer.sortDirty) {
+        await new Promise((done) => setTimeout(done, 2));
+        await sparkRenderer.driveSort();
+      }
+    };
+    await idle();
+    await sparkRenderer.update({ scene, camera });
+    await idle();
+    draw();
+  },
+  // The canvas as RGB bytes, top row first.
+  readRgb() {
+    const gl = renderer.getContext();
+    const rgba = new Uint8Array(4 * width * height);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
+    const rgb = new Uint8Array(3 * width * height);
+    for (let y = 0; y < height; ++y) {
+      for (let x = 0; x < width; ++x) {
+        const from = 4 * ((height - 1 - y) * width + x), to = 3 * (y * width + x);
+        rgb[to] = rgba[from]; rgb[to + 1] = rgba[from + 1]; rgb[to + 2] = rgba[from + 2];
+      }
+    }
+    return rgb;
+  },
+  setMeshVisible(visible) { box.visible = visible; },
+  loaded: null,
+};
+
+async function loadCameras(url) {
+  const json = await (await fetch(url)).json();
+  state.cameras = Array.isArray(json) ? json : camerasOfTransforms(json);
+  const n = Number(params.get('camera'));
+  if (params.get('camera') !== null && state.cameras[n]) state.camera = n;
+}
+
+const loading = [streamInto(params.get('stream') || '../../../out/default.m4d')];
+if (params.get('cameras')) loading.push(loadCameras(params.get('cameras')));
+window.m4dSpark.loaded = Promise.all(loading)
+  .then(() => { state.ended = true; })
+  .catch((e) => { state.ended = true; $('error').textContent = String(e.message || e); });
+requestAnimationFrame(tick);

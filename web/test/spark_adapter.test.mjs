@@ -1,0 +1,128 @@
+// Tests of the three.js + Spark adapter (web/adapters/spark_adapter.mjs) through its example
+// page (web/examples/spark/) in headless Chromium (puppeteer-core, WebGL2 on SwiftShader), with
+// the npm packages three and @sparkjsdev/spark: it plays the default scene's stream, uploads
+// the static layer only when it changes, and draws a capture camera's view close to the
+// native renderer's (m4d_play). Needs scripts/build.sh and scripts/build_web.sh.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+import { serve } from '../tools/serve.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
+const stream = 'conformance/streams/enc_adaptive_gop.m4d';
+let server, browser, base, dir, files;
+
+before(async () => {
+  server = await serve(root);
+  base = `http://127.0.0.1:${server.address().port}`;
+  browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+  // The conformance streams' scene (scripts/make_conformance.sh): its capture cameras, and
+  // the native renderer's image of frame 0 from camera 1.
+  dir = mkdtempSync(join(tmpdir(), 'm4d-spark-'));
+  execFileSync(join(root, 'build/release/tools/m4d/m4d'), ['scene', '-o', join(dir, 'scene'), '--cameras', '6',
+    '--width', '64', '--height', '48', '--frames', '6', '--points', '2000']);
+  execFileSync(join(root, 'build/release/tools/m4d_play'), [join(root, stream), '--capture', join(dir, 'scene'),
+    '--camera', '1', '--width', '320', '--height', '240', '--frames', '1', '-o', dir]);
+  files = await serve(dir);
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+  files?.close();
+  if (dir) rmSync(dir, { recursive: true, force: true });
+});
+
+async function openExample(query) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${base}/web/examples/spark/?${query}`);
+  await page.waitForFunction(() => window.m4dSpark && window.m4dSpark.state.frame, { timeout: 30000 });
+  await page.evaluate(() => window.m4dSpark.loaded);
+  assert.deepEqual(problems, []);
+  return page;
+}
+
+// PSNR in dB of the page's canvas against a PNG (bytes), decoded by the browser.
+async function psnrAgainstPng(page, png) {
+  return page.evaluate(async (base64) => {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+    const image = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const reference = context.getImageData(0, 0, image.width, image.height).data;
+    const drawn = window.m4dSpark.readRgb();
+    if (drawn.length !== 3 * image.width * image.height) return -1;
+    let sum = 0;
+    for (let p = 0; p < image.width * image.height; ++p) {
+      for (let c = 0; c < 3; ++c) sum += (drawn[3 * p + c] - reference[4 * p + c]) ** 2;
+    }
+    const mse = sum / drawn.length;
+    return mse === 0 ? Infinity : 10 * Math.log10((255 * 255) / mse);
+  }, png.toString('base64'));
+}
+
+test('plays the stream through Spark; the static layer is uploaded only when it changes', async () => {
+  const page = await openExample(`stream=/${stream}&width=160&height=120&autoplay=0`);
+  try {
+    const log = await page.evaluate(async () => {
+      const { adapter } = window.m4dSpark;
+      const t0 = performance.now();
+      const out = [{ index: -1, ...adapter.stats }];
+      for (let f = 0; f < 6; ++f) {
+        await window.m4dSpark.showFrame(f);
+        const { state } = window.m4dSpark;
+        out.push({ index: state.frame.index, key: state.frame.isKeyframe, changed: state.frame.staticChanged,
+          ...adapter.stats, sum: window.m4dSpark.readRgb().reduce((a, b) => a + b, 0) });
+      }
+      out[0].ms = performance.now() - t0;
+      return out;
+    });
+    // The page showed the first frame (with its static layer) on loading.
+    const initial = log.shift();
+    assert.ok(initial.staticUploads >= 1 && initial.dynamicUploads >= 1);
+    assert.deepEqual(log.map((f) => f.index), [0, 1, 2, 3, 4, 5]);
+    assert.ok(log[0].key, 'frame 0 is a keyframe');
+    for (const f of log) {
+      assert.ok(f.dynamicCount > 0 && f.sum > 0, `frame ${f.index}: drawn (${f.dynamicCount} dynamic splats)`);
+      if (!f.key) assert.equal(f.changed, false, `inter frame ${f.index} changed the static layer`);
+    }
+    // Static uploads: once per change, never on inter frames; the dynamic layer every frame,
+    // in the buffer it was first given.
+    const changes = log.filter((f) => f.changed).length;
+    assert.equal(log.at(-1).staticUploads - initial.staticUploads, changes);
+    assert.equal(log.at(-1).dynamicUploads - initial.dynamicUploads, 6);
+    assert.ok(log.at(-1).dynamicReallocations <= 2, `dynamic buffer reallocated ${log.at(-1).dynamicReallocations} times`);
+    // Successive frames differ (the dynamic layer moves).
+    assert.notEqual(log[1].sum, log[4].sum);
+  } finally {
+    await page.close();
+  }
+});
+
+test('draws capture camera 1 close to the native renderer', async (t) => {
+  const cameras = `http://127.0.0.1:${files.address().port}/scene/transforms.json`;
+  const page = await openExample(`stream=/${stream}&width=320&height=240&autoplay=0&mesh=0` +
+    `&cameras=${encodeURIComponent(cameras)}&camera=1`);
+  try {
+    await page.waitForFunction(() => window.m4dSpark.state.camera === 1, { timeout: 30000 });
+    await page.evaluate(() => window.m4dSpark.showFrame(0));
+    const psnr = await psnrAgainstPng(page, readFileSync(join(dir, 'frame_00000.png')));
+    t.diagnostic(`Spark, capture camera 1, frame 0: ${psnr.toFixed(2)} dB against m4d_play`);
+    assert.ok(psnr >= 20, `${psnr.toFixed(2)} dB`);
+  } finally {
+    await page.close();
+  }
+});
