@@ -27,12 +27,12 @@ before(async () => {
     args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
   });
   // The conformance streams' scene (scripts/make_conformance.sh): its capture cameras, and
-  // the native renderer's image of frame 0 from camera 1.
+  // the native renderer's images of frames 0 (key) and 1 (inter) from camera 1.
   dir = mkdtempSync(join(tmpdir(), 'm4d-spark-'));
   execFileSync(join(root, 'build/release/tools/m4d/m4d'), ['scene', '-o', join(dir, 'scene'), '--cameras', '6',
     '--width', '64', '--height', '48', '--frames', '6', '--points', '2000']);
   execFileSync(join(root, 'build/release/tools/m4d_play'), [join(root, stream), '--capture', join(dir, 'scene'),
-    '--camera', '1', '--width', '320', '--height', '240', '--frames', '1', '-o', dir]);
+    '--camera', '1', '--width', '320', '--height', '240', '--frames', '2', '-o', dir]);
   files = await serve(dir);
 });
 
@@ -118,10 +118,23 @@ test('draws capture camera 1 close to the native renderer', async (t) => {
     `&cameras=${encodeURIComponent(cameras)}&camera=1`);
   try {
     await page.waitForFunction(() => window.m4dSpark.state.camera === 1, { timeout: 30000 });
-    await page.evaluate(() => window.m4dSpark.showFrame(0));
-    const psnr = await psnrAgainstPng(page, readFileSync(join(dir, 'frame_00000.png')));
-    t.diagnostic(`Spark, capture camera 1, frame 0: ${psnr.toFixed(2)} dB against m4d_play`);
-    assert.ok(psnr >= 20, `${psnr.toFixed(2)} dB`);
+    // Measured: 40.1 dB on frame 0 with m4dSparkRendererOptions() (31.7 dB with Spark's own
+    // defaults: blurAmount's opacity compensation and radial sorting), against 40+ dB for our
+    // own WebGL2 player. What still differs is Spark's storage and blending, not the geometry:
+    // PackedSplats' 8-bit colour and opacity, half-float centres, 8-bit log scales, 24-bit
+    // quaternions and 6-8-bit SH; Spark's per-splat sort (whole splats by view depth, not
+    // per 16x16 tile) and its 3-sigma extent; its alpha-premultiplied 8-bit blending in
+    // WebGL. Colour space matches (splat values go out as they are, with three.js's sRGB
+    // output). The threshold, 38 dB, is 2 dB under the measurement (SwiftShader and Spark's
+    // sort are deterministic here) and above what was measured for mistakes: the capture's
+    // principal point 1 pixel off 26.9 dB, a linear-to-sRGB conversion 13.6 dB, the higher
+    // SH bands left out 36.6 dB.
+    for (const frame of [0, 1]) {
+      await page.evaluate((f) => window.m4dSpark.showFrame(f), frame);
+      const psnr = await psnrAgainstPng(page, readFileSync(join(dir, `frame_0000${frame}.png`)));
+      t.diagnostic(`Spark, capture camera 1, frame ${frame}: ${psnr.toFixed(2)} dB against m4d_play`);
+      assert.ok(psnr >= 38, `frame ${frame}: ${psnr.toFixed(2)} dB`);
+    }
   } finally {
     await page.close();
   }

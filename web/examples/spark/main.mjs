@@ -189,6 +189,8 @@ window.m4dSpark = {
     return rgb;
   },
   setMeshVisible(visible) { box.visible = visible; },
+  // The SplatFrame of a decoded frame, as show() makes it.
+  splatFrameOf: (frame) => splatFrameOfM4dFrame(frame, state.splatState),
   loaded: null,
 };
 
