@@ -82,10 +82,11 @@ test('plays the stream through Spark; the static layer is uploaded only when it 
       const t0 = performance.now();
       const out = [{ index: -1, ...adapter.stats }];
       for (let f = 0; f < 6; ++f) {
-        await window.m4dSpark.showFrame(f);
+        const drawn = f === 1 || f === 4;  // two frames drawn (Spark's sorts take time here)
+        await window.m4dSpark.showFrame(f, drawn);
         const { state } = window.m4dSpark;
         out.push({ index: state.frame.index, key: state.frame.isKeyframe, changed: state.frame.staticChanged,
-          ...adapter.stats, sum: window.m4dSpark.readRgb().reduce((a, b) => a + b, 0) });
+          ...adapter.stats, sum: drawn ? window.m4dSpark.readRgb().reduce((a, b) => a + b, 0) : null });
       }
       out[0].ms = performance.now() - t0;
       return out;
@@ -96,7 +97,7 @@ test('plays the stream through Spark; the static layer is uploaded only when it 
     assert.deepEqual(log.map((f) => f.index), [0, 1, 2, 3, 4, 5]);
     assert.ok(log[0].key, 'frame 0 is a keyframe');
     for (const f of log) {
-      assert.ok(f.dynamicCount > 0 && f.sum > 0, `frame ${f.index}: drawn (${f.dynamicCount} dynamic splats)`);
+      assert.ok(f.dynamicCount > 0 && f.sum !== 0, `frame ${f.index}: ${f.dynamicCount} dynamic splats, sum ${f.sum}`);
       if (!f.key) assert.equal(f.changed, false, `inter frame ${f.index} changed the static layer`);
     }
     // Static uploads: once per change, never on inter frames; the dynamic layer every frame,
@@ -107,6 +108,21 @@ test('plays the stream through Spark; the static layer is uploaded only when it 
     assert.ok(log.at(-1).dynamicReallocations <= 2, `dynamic buffer reallocated ${log.at(-1).dynamicReallocations} times`);
     // Successive frames differ (the dynamic layer moves).
     assert.notEqual(log[1].sum, log[4].sum);
+    // Bad input gets a clear error; dispose() takes both layers out of the scene.
+    const after = await page.evaluate(async () => {
+      const { adapter, scene } = window.m4dSpark;
+      const errors = [];
+      for (const bad of [null, { staticChanged: true, static: { count: 10, shCoefficients: 1, positions: new Float32Array(3) } }]) {
+        try { adapter.update(bad); } catch (e) { errors.push(`${e.name}: ${e.message}`); }
+      }
+      adapter.dispose();
+      await window.m4dSpark.settle();
+      return { errors, inScene: scene.getObjectByName('m4d') !== undefined, sum: window.m4dSpark.readRgb().reduce((a, b) => a + b, 0) };
+    });
+    assert.match(after.errors[0], /TypeError: update: not a SplatFrame/);
+    assert.match(after.errors[1], /RangeError: static: positions holds 3 values, 30 needed for 10 Gaussians/);
+    assert.equal(after.inScene, false);
+    assert.ok(after.sum < log[4].sum, 'the splats are gone after dispose()');
   } finally {
     await page.close();
   }

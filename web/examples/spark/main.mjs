@@ -147,8 +147,9 @@ $('play').onclick = () => {
 window.m4dSpark = {
   THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, state,
   // Pauses, shows frame `index` (seeking when it is not the next one), lets Spark finish
-  // generating and sorting for the current camera, draws; resolves with the frame index.
-  async showFrame(index) {
+  // generating and sorting for the current camera, draws (unless `settle` is false: then
+  // the page's loop draws it when Spark is ready); resolves with the frame index.
+  async showFrame(index, settle = true) {
     state.playing = false;
     if (!state.frame || ((state.frame.index + 1) >>> 0) !== index) {
       if (!decoder.seek(index)) throw new Error(`frame ${index}: not available`);
@@ -156,7 +157,7 @@ window.m4dSpark = {
     const frame = decoder.nextFrame();
     if (!frame) throw new Error(`frame ${index}: not decoded (${decoder.errors.lastMessage})`);
     show(frame);
-    await this.settle();
+    if (settle) await this.settle();
     return state.frame.index;
   },
   // Runs Spark's update (splat generation and the depth sort) to completion, then draws.
