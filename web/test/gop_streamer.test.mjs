@@ -94,6 +94,45 @@ test('the first frame decodes from the first GOP alone; a seek serves from its r
   streamer.close();
 });
 
+test('the first frame comes out while the rest of its GOP is still on its way', async () => {
+  // A server that sends the first GOP's keyframe, then holds the rest of the range until the
+  // test has decoded the first frame: a streamer that waited for the whole GOP would hang.
+  const name = 'synth_sh3_three_gops';
+  const stream = readFileSync(join(dir, `${name}.m4d`));
+  const index = readFileSync(join(dir, `${name}.m4d.gops.json`));
+  const probe = JSON.parse(execFileSync(join(root, 'build/release/tools/m4d_probe'), ['--json', join(dir, `${name}.m4d`)]));
+  const keyframe = probe.frames[0].packets.at(-1);
+  const keyframeEnd = keyframe.offset + keyframe.bytes;
+  let release;
+  const released = new Promise((done) => { release = done; });
+  const held = createServer(async (request, response) => {
+    if (request.url.endsWith('.json')) {
+      response.writeHead(200).end(index);
+      return;
+    }
+    const [start, end] = parseRange(request.headers.range, stream.length);
+    response.writeHead(206, { 'Content-Range': `bytes ${start}-${end}/${stream.length}`, 'Content-Length': end - start + 1 });
+    response.write(stream.subarray(start, Math.min(end + 1, keyframeEnd)));
+    await released;
+    response.end(stream.subarray(Math.min(end + 1, keyframeEnd), end + 1));
+  });
+  await new Promise((done) => held.listen(0, '127.0.0.1', done));
+  try {
+    const streamer = await GopStreamer.open({ m4d, url: `http://127.0.0.1:${held.address().port}/${name}.m4d`, readAhead: 0 });
+    assert.ok(keyframeEnd < streamer.index.gops[0].bytes);
+    const first = await streamer.nextFrame();
+    assert.equal(`${first.frameIndex} ${first.hash()}`, expected(name)[0]);
+    assert.equal(streamer.decoder.bufferedBytes, keyframeEnd, 'decoded from the keyframe bytes alone');
+    release();
+    const second = await streamer.nextFrame();
+    assert.equal(`${second.frameIndex} ${second.hash()}`, expected(name)[1]);
+    streamer.close();
+  } finally {
+    release();
+    held.close();
+  }
+});
+
 test('a seek into a dependent GOP fetches from its random-access GOP and nothing twice', async () => {
   const name = 'synth_sh1_dependent_gops';
   const path = `/${name}.m4d`;
