@@ -1,7 +1,8 @@
 // Streaming an M4D stream by GOP over HTTP: the player fetches the stream's GOP index (the
 // sidecar STREAM.m4d.gops.json that `m4d_probe --gop-index -o` writes), then only the GOPs it
 // plays, each with one HTTP Range request whose body is pushed to the decoder as it arrives,
-// so the first frame comes out as soon as the first GOP's keyframe and the next frame are in.
+// so the first frame comes out as soon as the first GOP's keyframe is in (the decoder outputs a
+// keyframe at its last packet; no inter frame is needed), before the rest of the GOP arrives.
 // GOPs ahead are requested as playback reaches them (readAhead), and seek(frame) fetches from
 // the random-access GOP at or before the frame only: nothing before it, nothing twice (the
 // bytes of every GOP fetched are kept).
@@ -133,7 +134,8 @@ export class GopStreamer {
     this.target = target;
   }
 
-  // Moves playback to frame `frame`: the next nextFrame() returns it. Fetches (later, as
+  // Moves playback to frame `frame`: the next nextFrame() returns it (call it between
+  // nextFrame calls, not while one is pending). Fetches (later, as
   // nextFrame needs them) the GOPs from its random-access GOP on, none before; GOPs already
   // fetched are not fetched again. Throws RangeError for a frame the stream does not hold.
   seek(frame) {
@@ -246,10 +248,14 @@ export class GopStreamer {
     wake();
   }
 
-  // Releases the decoder; requests still running stop at their next chunk.
+  // Releases the decoder; requests still running stop at their next chunk, and a pending
+  // nextFrame() rejects.
   close() {
     if (this.closed) return;
     this.closed = true;
     this.decoder.close();
+    for (const entry of this.entries.values()) {
+      for (const wake of entry.wakers.splice(0)) wake();
+    }
   }
 }

@@ -190,6 +190,23 @@ test('clear errors: 404, an index of another stream, a server without ranges', a
   await assert.rejects(GopStreamer.open({ m4d, url: `${base}/bad.m4d` }), /lists no GOP/);
   assert.throws(() => checkGopIndex({ format: 'x' }), /is not an m4d-gop-index/);
 
+  // Closed while a frame is awaited from a server that sends nothing: the wait rejects.
+  const silentIndex = readFileSync(join(dir, 'enc_adaptive_gop.m4d.gops.json'));
+  const silent = createServer((request, response) => {
+    if (request.url.endsWith('.json')) response.writeHead(200).end(silentIndex);
+    else response.writeHead(206, { 'Content-Range': request.headers.range.replace('=', ' ') + '/' + JSON.parse(silentIndex).stream_bytes });
+  });
+  await new Promise((done) => silent.listen(0, '127.0.0.1', done));
+  try {
+    const streamer = await GopStreamer.open({ m4d, url: `http://127.0.0.1:${silent.address().port}/s.m4d` });
+    const pending = streamer.nextFrame();
+    streamer.close();
+    await assert.rejects(pending, /closed/);
+  } finally {
+    silent.closeAllConnections();
+    silent.close();
+  }
+
   // A server that answers every request with the whole file.
   const index = readFileSync(join(dir, 'enc_adaptive_gop.m4d.gops.json'));
   const stream = readFileSync(join(dir, 'enc_adaptive_gop.m4d'));
