@@ -62,7 +62,7 @@ export declare class GopStreamer {
   /** Body bytes received over every request, the index included. */
   readonly bytesFetched: number;
   readonly requests: GopRequest[];
-  gopOf(frame: number): number;
+  gopOf(frame: number, from?: number): number;
   randomAccessGopOf(frame: number): number;
   /** The next frame (valid until the next call), or null at the end. */
   nextFrame(): Promise<M4dFrame | null>;

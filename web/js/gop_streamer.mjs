@@ -109,9 +109,13 @@ export class GopStreamer {
     return this.index.fps;
   }
 
-  // The GOP number holding frame `frame` (a frame_index), or -1.
-  gopOf(frame) {
-    return this.gops.findIndex((g) => frame >= g.frame && frame < g.frame + g.frames);
+  // The first GOP number at or after `from` holding frame `frame` (a frame_index; frame
+  // numbers wrap at 2^32), or -1.
+  gopOf(frame, from = 0) {
+    for (let g = from; g < this.gops.length; ++g) {
+      if (((frame - this.gops[g].frame) >>> 0) < this.gops[g].frames) return g;
+    }
+    return -1;
   }
 
   // The random-access GOP at or before the GOP holding `frame`; throws RangeError for a frame
@@ -129,6 +133,7 @@ export class GopStreamer {
     if (this.decoder) this.decoder.close();
     this.decoder = this.m4d.openDecoder({ layers: this.layers });
     this.cursor = gop;       // the GOP being pushed to the decoder
+    this.playing = gop;      // the GOP of the last frame output
     this.pushedChunks = 0;   // of that GOP's chunks
     this.ended = false;
     this.target = target;
@@ -155,7 +160,9 @@ export class GopStreamer {
       if (frame) {
         if (this.target !== null && ((frame.frameIndex - this.target) | 0) < 0) continue;
         this.target = null;
-        const playing = this.gopOf(frame.frameIndex);
+        // Frames come in stream order: the GOP playing is found from the last one on.
+        const playing = Math.max(this.playing, this.gopOf(frame.frameIndex, this.playing));
+        this.playing = playing;
         for (let g = playing + 1; g <= playing + this.readAhead && g < this.gops.length; ++g) this.request(g);
         return frame;
       }

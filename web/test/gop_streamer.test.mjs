@@ -34,7 +34,7 @@ const served = [];  // every request the server answered: { method, path, status
 
 before(async () => {
   dir = mkdtempSync(join(tmpdir(), 'm4d-gops-'));
-  for (const name of ['synth_sh3_three_gops', 'synth_sh1_dependent_gops', 'enc_adaptive_gop']) {
+  for (const name of ['synth_sh3_three_gops', 'synth_sh1_dependent_gops', 'enc_adaptive_gop', 'edit_frame_index_wraps']) {
     copyFileSync(join(streams, `${name}.m4d`), join(dir, `${name}.m4d`));
     execFileSync(join(root, 'build/release/tools/m4d_probe'),
       ['--gop-index', join(dir, `${name}.m4d`), '-o', join(dir, `${name}.m4d.gops.json`)]);
@@ -168,6 +168,23 @@ test('plays a whole stream with the whole file hashes', async () => {
   for (let f; (f = await streamer.nextFrame()); ) lines.push(`${f.frameIndex} ${f.hash()}`);
   assert.deepEqual(lines, expected(name));
   assert.equal(streamer.decoder.errors.count, 0);
+  assertServedOnce(`/${name}.m4d`);
+  streamer.close();
+});
+
+test('frame numbers that wrap at 2^32 inside a GOP', async () => {
+  const name = 'edit_frame_index_wraps';
+  const hashes = expected(name);
+  const streamer = await GopStreamer.open({ m4d, url: `${base}/${name}.m4d` });
+  const { gops } = streamer.index;
+  assert.ok(gops[0].frame + gops[0].frames > 2 ** 32, 'the first GOP holds the wrap');
+  assert.equal(streamer.gopOf(0), 0);
+  const lines = [];
+  for (let f; (f = await streamer.nextFrame()); ) lines.push(`${f.frameIndex} ${f.hash()}`);
+  assert.deepEqual(lines, hashes);
+  streamer.seek(0);  // frame 0, after 2^32 - 1, in the first GOP
+  const frame = await streamer.nextFrame();
+  assert.equal(`${frame.frameIndex} ${frame.hash()}`, hashes[2]);
   assertServedOnce(`/${name}.m4d`);
   streamer.close();
 });
