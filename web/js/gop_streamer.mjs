@@ -67,7 +67,7 @@ export class GopStreamer {
     this.bytesFetched = 0;
     /** The ranges requested, in order: { gop, start, end } (inclusive). */
     this.requests = [];
-    this.entries = new Map();  // GOP number -> { chunks, received, done, error, wake }
+    this.entries = new Map();  // GOP number -> { chunks, received, done, error, wakers }
     this.closed = false;
     this.restart(0, null);
   }
@@ -144,6 +144,7 @@ export class GopStreamer {
   // nextFrame needs them) the GOPs from its random-access GOP on, none before; GOPs already
   // fetched are not fetched again. Throws RangeError for a frame the stream does not hold.
   seek(frame) {
+    if (this.closed) throw new GopStreamError('the streamer is closed');
     const gop = this.randomAccessGopOf(frame);
     this.restart(gop, frame);
   }
