@@ -3,7 +3,8 @@
 // packets with their types and sizes, the decoded Gaussians per layer and the frame hash, and
 // every error with its byte offset. A table, or JSON with --json. Reads the stream as a player
 // does (bitstream-spec 3: resynchronise after damage); exits 1 when anything was damaged or
-// the stream holds no frame.
+// the stream holds no frame. With --gop-index it prints (or writes with -o) the stream's GOP
+// index instead, the JSON sidecar (STREAM.m4d.gops.json) that an HTTP player fetches by.
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "existing_output.h"
+#include "gop_index.h"
+#include "io/atomic_file.h"
 #include "m4d/m4d.h"
 #include "usage_exit.h"
 
@@ -288,15 +292,53 @@ nlohmann::json ToJson(const std::string& path, size_t size, const Probe& probe) 
   return {{"stream", stream}, {"gops", gops}, {"frames", frames}, {"errors", errors}};
 }
 
+// --gop-index: the index on stdout, or written atomically to `output`; 1 for a damaged stream.
+int WriteGopIndex(const std::string& input, const std::vector<uint8_t>& data,
+                  const std::string& output) {
+  m4d::GopIndex index;
+  const m4d::Status built = m4d::BuildGopIndex(data.data(), data.size(), &index);
+  if (!built.ok()) {
+    std::fprintf(stderr, "m4d_probe: %s: %s\n", input.c_str(), built.message().c_str());
+    return 1;
+  }
+  const std::string json = m4d::GopIndexJson(index);
+  if (output.empty()) {
+    std::fputs(json.c_str(), stdout);
+    return 0;
+  }
+  const m4d::Status written =
+      m4d::WriteFileAtomically(output, reinterpret_cast<const uint8_t*>(json.data()), json.size());
+  if (!written.ok()) {
+    std::fprintf(stderr, "m4d_probe: %s\n", written.message().c_str());
+    return 1;
+  }
+  std::printf("%s: %zu GOPs, %lld frames\n", output.c_str(), index.gops.size(),
+              static_cast<long long>(index.frames));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string input;
-  bool json = false;
+  std::string output;
+  bool json = false, gop_index = false, force = false;
   CLI::App app{"Show what an M4D stream holds: configuration, GOPs, frames, packets, errors."};
   app.add_option("stream", input, "stream file")->required()->check(CLI::ExistingFile);
-  app.add_flag("--json", json, "JSON instead of the table");
+  CLI::Option* gops = app.add_flag("--gop-index", gop_index,
+                                   "the GOP index (JSON) an HTTP player fetches by, instead");
+  app.add_flag("--json", json, "JSON instead of the table")->excludes(gops);
+  app.add_option("-o,--output", output, "--gop-index: write it to this file (else stdout)")
+      ->needs(gops);
+  app.add_flag("-f,--force", force, "replace an existing output (else refused)")->needs(gops);
   M4D_PARSE_ARGUMENTS(app, argc, argv);
+  if (!output.empty()) {
+    const m4d::Status may_write = m4d::RefuseExistingOutput(output, force);
+    if (!may_write.ok()) {
+      std::fprintf(stderr, "m4d_probe: %s\n", may_write.message().c_str());
+      return 2;
+    }
+  }
   std::ifstream file(input, std::ios::binary);
   const std::vector<uint8_t> data((std::istreambuf_iterator<char>(file)),
                                   std::istreambuf_iterator<char>());
@@ -304,6 +346,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "m4d_probe: cannot read %s: %s\n", input.c_str(), std::strerror(errno));
     return 1;
   }
+  if (gop_index) return WriteGopIndex(input, data, output);
   Probe probe;
   Run(data, &probe);
   if (json) {
