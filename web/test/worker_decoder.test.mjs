@@ -112,6 +112,44 @@ test('frames from the worker match the main-thread decoder; static layer sent on
   assert.deepEqual(problems, []);
 });
 
+test('the player core plays and seeks the worker decoder\'s frames', async () => {
+  const result = await page.evaluate(async (url) => {
+    const { M4dWorkerDecoder, PlayerCore } = window.m4dTest;
+    const decoder = new M4dWorkerDecoder({ moduleUrl: '/build/web/module/m4d.mjs' });
+    await decoder.open();
+    await decoder.push(await (await fetch(url)).arrayBuffer());
+    await decoder.end();
+    const core = new PlayerCore(decoder);
+    core.play();
+    // Time advances one frame (at the stream's 30 fps) per frame shown: no frame is late.
+    const shown = [];
+    let now = 0;
+    const nextShown = async () => {
+      for (let polls = 0; polls < 2000; ++polls) {
+        const f = core.tick(now);
+        if (f) return f;
+        if (core.ended || core.error) return null;
+        await new Promise((done) => setTimeout(done, 1));
+      }
+      return null;
+    };
+    for (let f; (f = await nextShown()); now += 1000 / 30 + 0.001) {
+      shown.push({ index: f.frameIndex, staticSent: f.static !== null });
+    }
+    const ended = core.ended;
+    await core.seek(3);
+    const sought = await nextShown();
+    decoder.close();
+    return { shown, ended, stats: core.stats, fps: core.fps, sought: { index: sought.frameIndex, staticSent: sought.static !== null } };
+  }, '/conformance/streams/enc_adaptive_gop.m4d');
+  assert.deepEqual(result.shown.map((f) => f.index), [0, 1, 2, 3, 4, 5]);
+  assert.deepEqual(result.shown.map((f) => f.staticSent), [true, false, true, false, true, false]);
+  assert.equal(result.ended, true);
+  assert.equal(result.fps, 30);
+  assert.deepEqual(result.stats, { shown: 7, dropped: 0, stalls: 0, resyncs: 0 });
+  assert.deepEqual(result.sought, { index: 3, staticSent: true });
+});
+
 test('a worker that dies rejects the calls waiting and those after', async () => {
   const result = await page.evaluate(async () => {
     const { M4dWorkerDecoder } = window.m4dTest;
