@@ -150,6 +150,24 @@ test('the player core plays and seeks the worker decoder\'s frames', async () =>
   assert.deepEqual(result.sought, { index: 3, staticSent: true });
 });
 
+test('damage met by the worker is reported with the frames', async () => {
+  const result = await page.evaluate(async (url) => {
+    const decoder = new window.m4dTest.M4dWorkerDecoder({ moduleUrl: '/build/web/module/m4d.mjs' });
+    await decoder.open();
+    await decoder.push(await (await fetch(url)).arrayBuffer());
+    await decoder.end();
+    const frames = [];
+    for (let f; (f = await decoder.nextFrame()); ) frames.push([f.frameIndex, f.concealedLayers]);
+    decoder.close();
+    return { frames, errors: decoder.errors };
+  }, '/conformance/invalid/entropy_rans_damaged.m4d');
+  // Frame 1's motion grid is damaged: the dynamic layer (bit 2) of frames 1 and 2 is concealed
+  // until the next GOP (3); every frame is still output.
+  assert.deepEqual(result.frames, [[0, 0], [1, 2], [2, 2], [3, 0], [4, 0], [5, 0]]);
+  assert.ok(result.errors.count >= 1);
+  assert.equal(result.errors.firstCodeName, 'M4D_ERR_BITSTREAM');
+});
+
 test('a worker that dies rejects the calls waiting and those after', async () => {
   const result = await page.evaluate(async () => {
     const { M4dWorkerDecoder } = window.m4dTest;
