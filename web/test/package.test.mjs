@@ -53,3 +53,28 @@ test('pack_web.sh packs a package whose exports resolve to files in the tarball'
     rmSync(dir, { recursive: true, force: true });
   }
 });
+
+test('every export and member the package\'s TypeScript declarations declare exists', async () => {
+  const instances = {
+    M4dWorkerDecoder: (api) => new api.M4dWorkerDecoder(),
+    PlayerCore: (api) => new api.PlayerCore({ nextFrame: async () => null, seek: async () => false }),
+  };
+  let checked = 0;
+  for (const name of ['splat_frame', 'worker_decoder', 'player_core']) {
+    const api = await import(new URL(`../js/${name}.mjs`, import.meta.url));
+    const declarations = readFileSync(new URL(`../js/${name}.d.mts`, import.meta.url), 'utf8');
+    for (const [, kind, symbol] of declarations.matchAll(/export declare (function|const|class) (\w+)/g)) {
+      assert.notEqual(api[symbol], undefined, `${name}: ${kind} ${symbol} is declared but not exported`);
+      ++checked;
+    }
+    for (const [, symbol, body] of declarations.matchAll(/export declare class (\w+)[^{]*\{([\s\S]*?)\n\}/g)) {
+      const instance = instances[symbol](api);
+      for (const [, member] of body.matchAll(/^  (?:readonly )?(\w+)[(:<]/gm)) {
+        if (member === 'constructor') continue;
+        assert.ok(member in instance, `${symbol}.${member} is declared but not defined`);
+        ++checked;
+      }
+    }
+  }
+  assert.ok(checked > 30, `${checked} members`);
+});
