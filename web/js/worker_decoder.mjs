@@ -54,12 +54,14 @@ export class M4dWorkerDecoder {
     return this.call('open', { moduleUrl: absolute(moduleUrl), wasmUrl: absolute(wasmUrl), wasmBinary, layers, maxGaussians });
   }
 
-  // Appends stream bytes (a copy is sent; options.transfer: true moves the ArrayBuffer
-  // instead, when `bytes` spans all of it). Resolves with { bufferedBytes }.
+  // Appends stream bytes. A copy of them is sent (only the bytes given, not the rest of their
+  // buffer); options.transfer: true moves the ArrayBuffer instead when `bytes` spans all of it
+  // (the caller's array is then detached). Resolves with { bufferedBytes }.
   push(bytes, options = {}) {
     const data = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
     const whole = data.byteOffset === 0 && data.byteLength === data.buffer.byteLength;
-    return this.call('push', { bytes: data }, options.transfer && whole ? [data.buffer] : []);
+    const sent = options.transfer && whole ? data : data.slice();
+    return this.call('push', { bytes: sent }, [sent.buffer]);
   }
 
   // No more bytes come.

@@ -61,11 +61,13 @@ test('frames from the worker match the main-thread decoder; static layer sent on
     };
     // The stream in three chunks, frames drained as they come.
     const third = Math.ceil(bytes.length / 3);
-    let waited = 0;
+    const detached = [];
     for (let at = 0; at < bytes.length; at += third) {
-      await decoder.push(bytes.subarray(at, at + third));
+      // The first chunk is copied (a view of the whole stream), the others moved.
+      const chunk = at === 0 ? bytes.subarray(0, third) : bytes.slice(at, at + third);
+      await decoder.push(chunk, { transfer: at > 0 });
+      detached.push(chunk.byteLength === 0);
       for (let f; (f = await decoder.nextFrame()); ) check(f);
-      ++waited;
     }
     await decoder.end();
     for (let f; (f = await decoder.nextFrame()); ) check(f);
@@ -91,7 +93,7 @@ test('frames from the worker match the main-thread decoder; static layer sent on
     decoder.close();
     let closed;
     try { await decoder.nextFrame(); closed = 'no error'; } catch (e) { closed = e.message; }
-    return { version, frames, mismatches, ended, fps, sought, errors, still, closed, chunks: waited };
+    return { version, frames, mismatches, ended, fps, sought, errors, still, closed, detached, whole: bytes.byteLength };
   }, '/conformance/streams/enc_adaptive_gop.m4d');
   assert.match(result.version, /^\d+\.\d+\.\d+$/);
   assert.deepEqual(result.mismatches, []);
@@ -104,6 +106,8 @@ test('frames from the worker match the main-thread decoder; static layer sent on
   }
   assert.equal(result.ended, true);
   assert.equal(result.fps, 30);
+  assert.deepEqual(result.detached, [false, true, true]);
+  assert.ok(result.whole > 0);
   assert.deepEqual(result.sought, [{ index: 3, staticChanged: true }, { index: 1, staticChanged: true }, { index: 2, staticChanged: true }]);
   assert.match(result.errors[0], /bad frame -1/);
   assert.match(result.errors[1], /push after end/);
