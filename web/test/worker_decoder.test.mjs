@@ -156,7 +156,8 @@ test('the player core plays and seeks the worker decoder\'s frames', async () =>
 
 test('damage met by the worker is reported with the frames', async () => {
   const result = await page.evaluate(async (url) => {
-    const decoder = new window.m4dTest.M4dWorkerDecoder({ moduleUrl: '/build/web/module/m4d.mjs' });
+    // The wasm named in the init message, fetched by the worker.
+    const decoder = new window.m4dTest.M4dWorkerDecoder({ moduleUrl: '/build/web/module/m4d.mjs', wasmUrl: '/build/web/module/m4d_wasm.wasm' });
     await decoder.open();
     await decoder.push(await (await fetch(url)).arrayBuffer());
     await decoder.end();
