@@ -1,0 +1,44 @@
+// Type declarations of splat_frame.mjs: owned SplatLayer/SplatFrame copies and conversions.
+import type { M4dFrame, M4dLayerView } from './m4d.mjs';
+
+/** One layer's Gaussians as coded (fields of M4dLayerView), each array owning its buffer. */
+export interface SplatLayer {
+  count: number;
+  shDegree: number;
+  shCoefficients: number;
+  /** 3 per Gaussian. */
+  positions: Float32Array;
+  /** 3 per Gaussian (natural log). */
+  logScales: Float32Array;
+  /** 4 per Gaussian: w, x, y, z (not normalised). */
+  rotations: Float32Array;
+  /** 1 per Gaussian. */
+  opacityLogits: Float32Array;
+  /** 3 * shCoefficients per Gaussian: [k][r, g, b]. */
+  sh: Float32Array;
+}
+
+/** A decoded frame handed between threads and to the viewer adapters. */
+export interface SplatFrame {
+  frameIndex: number;
+  isKeyframe: boolean;
+  /** Bits: 1 static, 2 dynamic. */
+  layers: number;
+  /** Bits of the layers concealed after damage; 0 when intact. */
+  concealedLayers: number;
+  /** True when `static` differs from the previous frame delivered (first frame, keyframe, seek). */
+  staticChanged: boolean;
+  /** Null when staticChanged is false: the previous static layer still holds. */
+  static: SplatLayer | null;
+  dynamic: SplatLayer;
+}
+
+export declare const SH_C0: number;
+export declare function copySplatLayer(layerView: M4dLayerView | SplatLayer): SplatLayer;
+export declare function splatFrameFromDecoder(frame: M4dFrame, options?: { staticChanged?: boolean }): SplatFrame;
+export declare function transferablesOf(splatFrame: SplatFrame): ArrayBuffer[];
+export declare function layersEqual(a: M4dLayerView | SplatLayer | null, b: M4dLayerView | SplatLayer | null): boolean;
+export declare function linearScales(layer: M4dLayerView | SplatLayer, out?: Float32Array): Float32Array;
+export declare function opacities(layer: M4dLayerView | SplatLayer, out?: Float32Array): Float32Array;
+export declare function normalisedRotationsXyzw(layer: M4dLayerView | SplatLayer, out?: Float32Array): Float32Array;
+export declare function rgbFromShDc(layer: M4dLayerView | SplatLayer, out?: Float32Array): Float32Array;

@@ -1,0 +1,62 @@
+// Tests of the SplatFrame layout and conversions (web/js/splat_frame.mjs) in Node.js, on the
+// main-thread decoder's frames (build/web/module, scripts/build_web.sh) and on hand-made layers.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { test } from 'node:test';
+import {
+  SH_C0, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
+  splatFrameFromDecoder, transferablesOf,
+} from '../js/splat_frame.mjs';
+
+const root = new URL('../../', import.meta.url);
+const { loadM4d } = await import(new URL('build/web/module/m4d.mjs', root));
+
+test('copies a decoded frame into owned arrays and lists their buffers', async () => {
+  const m4d = await loadM4d();
+  const decoder = m4d.openDecoder();
+  decoder.push(readFileSync(new URL('conformance/streams/enc_adaptive_gop.m4d', root)));
+  decoder.end();
+  const view = decoder.nextFrame();
+  const frame = splatFrameFromDecoder(view, { staticChanged: true });
+  assert.equal(frame.frameIndex, 0);
+  assert.equal(frame.isKeyframe, true);
+  assert.equal(frame.layers, 3);
+  assert.equal(frame.concealedLayers, 0);
+  assert.equal(frame.staticChanged, true);
+  assert.ok(layersEqual(frame.static, view.static) && layersEqual(frame.dynamic, view.dynamic));
+  for (const layer of [frame.static, frame.dynamic]) {
+    assert.equal(layer.positions.length, 3 * layer.count);
+    assert.equal(layer.sh.length, 3 * layer.shCoefficients * layer.count);
+    assert.notEqual(layer.positions.buffer, view.dynamic.positions.buffer);  // not wasm memory
+  }
+  assert.equal(transferablesOf(frame).length, 10);
+  const inter = splatFrameFromDecoder(decoder.nextFrame(), { staticChanged: false });
+  assert.equal(inter.static, null);
+  assert.equal(transferablesOf(inter).length, 5);
+  assert.equal(layersEqual(frame.dynamic, inter.dynamic), false);
+  // The copy outlives the decoder.
+  decoder.close();
+  assert.ok(Number.isFinite(frame.dynamic.positions[0]));
+});
+
+test('converts to the layouts viewers take', () => {
+  const layer = {
+    count: 2, shDegree: 1, shCoefficients: 4,
+    positions: new Float32Array(6),
+    logScales: new Float32Array([0, Math.log(2), -1, 1, 0, 0]),
+    rotations: new Float32Array([2, 0, 0, 0, 0, 0, 0, 0]),  // w x y z; the second is zero
+    opacityLogits: new Float32Array([0, 100]),
+    sh: new Float32Array(24).map((_, i) => (i < 3 ? [1, -1, 0][i] : i)),
+  };
+  const close = (a, b) => a.forEach((v, i) => assert.ok(Math.abs(v - b[i]) < 1e-6, `${i}: ${v} vs ${b[i]}`));
+  close(linearScales(layer), [1, 2, Math.exp(-1), Math.E, 1, 1]);
+  close(opacities(layer), [0.5, 1]);
+  close(normalisedRotationsXyzw(layer), [0, 0, 0, 1, 0, 0, 0, 1]);
+  close(rgbFromShDc(layer), [0.5 + SH_C0, 0.5 - SH_C0, 0.5, 0.5 + SH_C0 * 12, 0.5 + SH_C0 * 13, 0.5 + SH_C0 * 14]);
+  const out = new Float32Array(8);
+  assert.equal(normalisedRotationsXyzw(layer, out), out);
+  const copy = copySplatLayer(layer);
+  assert.ok(layersEqual(copy, layer));
+  copy.sh[2] = -0;  // equal as a number, not bit for bit
+  assert.equal(layersEqual(copy, layer), false);
+});
