@@ -1,0 +1,95 @@
+// Tests of the PlayCanvas adapter (web/adapters/playcanvas_adapter.mjs) in headless Chromium
+// with the playcanvas package from npm, through its example page (web/examples/playcanvas/):
+// it plays the default scene's stream, a frame seen from a capture camera is compared with
+// the native renderer's image of it (m4d_play), and the static layer is not rebuilt on inter
+// frames. Needs scripts/build.sh (m4d, m4d_play) and scripts/build_web.sh.
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+import { serve } from '../tools/serve.mjs';
+
+const root = fileURLToPath(new URL('../../', import.meta.url));
+const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
+let server, browser, base;
+
+before(async () => {
+  server = await serve(root);
+  base = `http://127.0.0.1:${server.address().port}`;
+  // No GPU here: WebGL2 on SwiftShader, Chromium's CPU rasterizer.
+  browser = await puppeteer.launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+async function openExample(query) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${base}/web/examples/playcanvas/?${query}`);
+  await page.waitForFunction(() => window.m4dPlayCanvas && window.m4dPlayCanvas.state.frame, { timeout: 30000 });
+  await page.evaluate(() => window.m4dPlayCanvas.loaded);
+  assert.deepEqual(problems, []);
+  return page;
+}
+
+// PSNR in dB of the page's canvas against a PNG (bytes), decoded by the browser.
+async function psnrAgainstPng(page, png) {
+  return page.evaluate(async (base64) => {
+    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+    const image = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const reference = context.getImageData(0, 0, image.width, image.height).data;
+    const drawn = window.m4dPlayCanvas.readRgb();
+    if (drawn.length !== 3 * image.width * image.height) return -1;
+    let sum = 0;
+    for (let p = 0; p < image.width * image.height; ++p) {
+      for (let c = 0; c < 3; ++c) sum += (drawn[3 * p + c] - reference[4 * p + c]) ** 2;
+    }
+    const mse = sum / drawn.length;
+    return mse === 0 ? Infinity : 10 * Math.log10((255 * 255) / mse);
+  }, png.toString('base64'));
+}
+
+test('plays the default scene through PlayCanvas as m4d_play draws it', async (t) => {
+  const stream = join(root, 'conformance/streams/enc_adaptive_gop.m4d');
+  const dir = mkdtempSync(join(tmpdir(), 'm4d-playcanvas-'));
+  const capture = join(dir, 'scene');
+  const files = await serve(dir);
+  try {
+    // The conformance streams' scene (scripts/make_conformance.sh): its transforms.json.
+    execFileSync(join(root, 'build/release/tools/m4d/m4d'), ['scene', '-o', capture, '--cameras', '6',
+      '--width', '64', '--height', '48', '--frames', '6', '--points', '2000']);
+    execFileSync(join(root, 'build/release/tools/m4d_play'), [stream, '--capture', capture, '--camera', '1',
+      '--width', '320', '--height', '240', '--frames', '6', '-o', dir]);
+    const cameras = `http://127.0.0.1:${files.address().port}/scene/transforms.json`;
+    const page = await openExample(`stream=/conformance/streams/enc_adaptive_gop.m4d&width=320&height=240` +
+      `&autoplay=0&box=0&cameras=${encodeURIComponent(cameras)}&camera=1`);
+    const psnrs = [];
+    for (const frame of [0, 1, 2, 3]) {
+      assert.equal(await page.evaluate((f) => window.m4dPlayCanvas.showFrame(f), frame), frame);
+      const psnr = await psnrAgainstPng(page, readFileSync(join(dir, `frame_0000${frame}.png`)));
+      psnrs.push(psnr);
+      t.diagnostic(`frame ${frame}: ${psnr.toFixed(2)} dB against m4d_play`);
+    }
+    const stats = await page.evaluate(() => window.m4dPlayCanvas.adapter.stats);
+    t.diagnostic(JSON.stringify(stats));
+    await page.close();
+  } finally {
+    files.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
