@@ -9,7 +9,7 @@
 // Prints a table per frame and the medians; --screenshot PNG saves the example page's canvas.
 //
 //   node web/bench/playcanvas_frame_cost.mjs STREAM [--width 960] [--height 540] [--frames N]
-//                                            [--screenshot PNG]
+//                                            [--cameras transforms.json --camera N] [--screenshot PNG]
 import { parseArgs } from 'node:util';
 import { fileURLToPath } from 'node:url';
 import { relative, resolve } from 'node:path';
@@ -21,6 +21,7 @@ const { values, positionals } = parseArgs({
   options: {
     width: { type: 'string', default: '960' }, height: { type: 'string', default: '540' },
     frames: { type: 'string', default: '0' }, screenshot: { type: 'string' },
+    cameras: { type: 'string' }, camera: { type: 'string' },
   },
 });
 if (positionals.length !== 1) {
@@ -44,7 +45,8 @@ try {
   await page.setViewport({ width: Number(values.width) + 20, height: Number(values.height) + 90 });
   const stream = `http://127.0.0.1:${streams.address().port}/${relative('/', resolve(positionals[0]))}`;
   await page.goto(`${base}/web/examples/playcanvas/?stream=${encodeURIComponent(stream)}&autoplay=0` +
-    `&width=${values.width}&height=${values.height}`);
+    `&width=${values.width}&height=${values.height}` + (values.cameras ? `&cameras=${encodeURIComponent(
+      `http://127.0.0.1:${streams.address().port}/${relative('/', resolve(values.cameras))}`)}&camera=${values.camera || 0}` : ''));
   await page.waitForFunction(() => window.m4dPlayCanvas && window.m4dPlayCanvas.state.frame, { timeout: 60000 });
   await page.evaluate(() => window.m4dPlayCanvas.loaded);
   const rows = await page.evaluate(async (limit) => {

@@ -74,7 +74,7 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
     execFileSync(join(root, 'build/release/tools/m4d/m4d'), ['scene', '-o', capture, '--cameras', '6',
       '--width', '64', '--height', '48', '--frames', '6', '--points', '2000']);
     execFileSync(join(root, 'build/release/tools/m4d_play'), [stream, '--capture', capture, '--camera', '1',
-      '--width', '320', '--height', '240', '--frames', '6', '-o', dir]);
+      '--width', '320', '--height', '240', '--frames', '4', '-o', dir]);
     const cameras = `http://127.0.0.1:${files.address().port}/scene/transforms.json`;
     const page = await openExample(`stream=/conformance/streams/enc_adaptive_gop.m4d&width=320&height=240` +
       `&autoplay=0&cameras=${encodeURIComponent(cameras)}&camera=1`);

@@ -68,32 +68,35 @@ async function captureCamera(url, index) {
     cy: get('cy') * scale + 0.5 * (canvas.height - get('h') * scale), rotation, translation };
 }
 
-// Without capture cameras: m4d_play's orbit at angle 0 around the first dynamic layer (up -y).
+// Without capture cameras: m4d_play's orbit at angle 0 (the player's start) around the first
+// dynamic layer: its mean, three times its spread away; the world's up is the stream's, else -y.
 function orbitCamera(layer) {
   const c = [0, 0, 0];
   for (let i = 0; i < layer.count; ++i) for (let a = 0; a < 3; ++a) c[a] += layer.positions[3 * i + a] / layer.count;
   let sq = 0;
   for (let i = 0; i < layer.count; ++i) for (let a = 0; a < 3; ++a) sq += (layer.positions[3 * i + a] - c[a]) ** 2;
   const d = layer.count ? 3 * Math.sqrt(sq / layer.count) : 1;
-  const eye = [c[0], c[1] - 0.3 * d, c[2] - d];  // a = (0, 0, -1), b = up x a, lifted along up
-  const z = normalize(c.map((v, k) => v - eye[k])), x = normalize(cross(z, [0, -1, 0])), y = cross(z, x);
+  const up = decoder.streamInfo()?.upAxis ?? [0, -1, 0];
+  const a = normalize(cross(up, Math.abs(up[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0])), b = cross(up, a);
+  const eye = [0, 1, 2].map((k) => c[k] + d * (-b[k] + 0.3 * up[k]));
+  const z = normalize(c.map((v, k) => v - eye[k])), x = normalize(cross(z, up)), y = cross(z, x);
   const rotation = [...x, ...y, ...z];
   const translation = [0, 1, 2].map((r) => -(rotation[3 * r] * eye[0] + rotation[3 * r + 1] * eye[1] + rotation[3 * r + 2] * eye[2]));
   const focal = 0.9 * canvas.width;
-  return { centre: c, radius: d, camera: { fx: focal, fy: focal, cx: canvas.width / 2, cy: canvas.height / 2, rotation, translation, near: 0.05 } };
+  return { centre: c, radius: d, side: a, camera: { fx: focal, fy: focal, cx: canvas.width / 2, cy: canvas.height / 2, rotation, translation, near: 0.05 } };
 }
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const normalize = (a) => { const l = Math.hypot(...a); return a.map((v) => v / l); };
 
 // The box: an ordinary lit entity beside the splats, drawn with the same depth buffer.
-function addBox(centre, radius) {
+function addBox(centre, radius, side) {
   const material = new pc.StandardMaterial();
   material.diffuse = new pc.Color(0.9, 0.5, 0.2);
   material.update();
   const box = new pc.Entity('box');
   box.addComponent('render', { type: 'box', material });
-  box.setLocalScale(0.3 * radius, 0.3 * radius, 0.3 * radius);
-  box.setPosition(centre[0] + 0.6 * radius, centre[1], centre[2]);
+  box.setLocalScale(0.08 * radius, 0.08 * radius, 0.08 * radius);
+  box.setPosition(centre[0] + 0.2 * radius * side[0], centre[1] + 0.2 * radius * side[1], centre[2] + 0.2 * radius * side[2]);
   app.root.addChild(box);
   state.box = box;
 }
@@ -118,7 +121,7 @@ function advance(seekTo) {
   if (!state.cameraSet) {
     const orbit = orbitCamera(splatFrame.dynamic.count ? splatFrame.dynamic : splatFrame.static);
     if (!params.get('cameras')) setCaptureCamera(pc, camera, orbit.camera, canvas.width, canvas.height);
-    if (params.get('box') !== '0') addBox(orbit.centre, orbit.radius);
+    if (params.get('box') !== '0') addBox(orbit.centre, orbit.radius, orbit.side);
     state.cameraSet = true;
   }
   state.updateMs = adapter.update(splatFrame);
