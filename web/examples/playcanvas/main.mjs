@@ -42,6 +42,7 @@ const light = new pc.Entity('light');
 light.addComponent('light', { type: 'directional', intensity: 1.5 });
 light.setEulerAngles(45, 30, 0);
 app.root.addChild(light);
+app.scene.ambientLight = new pc.Color(0.35, 0.35, 0.35);
 app.start();
 
 const adapter = new M4dPlayCanvasAdapter(app, pc);
@@ -83,20 +84,25 @@ function orbitCamera(layer) {
   const rotation = [...x, ...y, ...z];
   const translation = [0, 1, 2].map((r) => -(rotation[3 * r] * eye[0] + rotation[3 * r + 1] * eye[1] + rotation[3 * r + 2] * eye[2]));
   const focal = 0.9 * canvas.width;
-  return { centre: c, radius: d, side: a, camera: { fx: focal, fy: focal, cx: canvas.width / 2, cy: canvas.height / 2, rotation, translation, near: 0.05 } };
+  return { centre: c, camera: { fx: focal, fy: focal, cx: canvas.width / 2, cy: canvas.height / 2, rotation, translation, near: 0.05 } };
 }
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const normalize = (a) => { const l = Math.hypot(...a); return a.map((v) => v / l); };
 
-// The box: an ordinary lit entity beside the splats, drawn with the same depth buffer.
-function addBox(centre, radius, side) {
+// The box: an ordinary lit entity among the splats (fixed in the world, placed once between
+// the camera and the dynamic layer's centre, to its right), drawn with the same depth buffer.
+function addBox(centre) {
   const material = new pc.StandardMaterial();
   material.diffuse = new pc.Color(0.9, 0.5, 0.2);
   material.update();
   const box = new pc.Entity('box');
   box.addComponent('render', { type: 'box', material });
-  box.setLocalScale(0.08 * radius, 0.08 * radius, 0.08 * radius);
-  box.setPosition(centre[0] + 0.2 * radius * side[0], centre[1] + 0.2 * radius * side[1], centre[2] + 0.2 * radius * side[2]);
+  const eye = camera.getPosition(), right = camera.right;
+  const to = [centre[0] - eye.x, centre[1] - eye.y, centre[2] - eye.z], d = Math.hypot(...to);
+  box.setLocalScale(0.12 * d, 0.12 * d, 0.12 * d);
+  box.setPosition(eye.x + 0.6 * to[0] + 0.15 * d * right.x, eye.y + 0.6 * to[1] + 0.15 * d * right.y,
+    eye.z + 0.6 * to[2] + 0.15 * d * right.z);
+  box.setEulerAngles(20, 30, 0);
   app.root.addChild(box);
   state.box = box;
 }
@@ -121,7 +127,7 @@ function advance(seekTo) {
   if (!state.cameraSet) {
     const orbit = orbitCamera(splatFrame.dynamic.count ? splatFrame.dynamic : splatFrame.static);
     if (!params.get('cameras')) setCaptureCamera(pc, camera, orbit.camera, canvas.width, canvas.height);
-    if (params.get('box') !== '0') addBox(orbit.centre, orbit.radius, orbit.side);
+    if (params.get('box') !== '0') addBox(orbit.centre);
     state.cameraSet = true;
   }
   state.updateMs = adapter.update(splatFrame);
