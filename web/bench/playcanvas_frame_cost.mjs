@@ -72,8 +72,10 @@ try {
     const translation = [0, 1, 2].map((r) => -(rotation[3 * r] * pos.x + rotation[3 * r + 1] * pos.y + rotation[3 * r + 2] * pos.z));
     const p = camera.camera.projectionMatrix.data, W = own.width, H = own.height;
     const sdkCamera = { fx: p[0] * W / 2, fy: p[5] * H / 2, cx: (1 - p[8]) * W / 2, cy: (1 + p[9]) * H / 2, rotation, translation };
-    // The page's adapter (the page is paused: only this loop gives it frames).
+    // The page's adapter (the page is paused: only this loop gives it frames); the example's
+    // box is hidden while timing, so that both renderers draw the same splats only.
     const bench = adapter;
+    if (window.m4dPlayCanvas.state.box) window.m4dPlayCanvas.state.box.enabled = false;
     let ready = 0;
     app.systems.gsplat.on('frame:ready', (_c, _l, isReady) => { if (isReady) ++ready; });
     const sorted = async () => { for (const seen = ready; ready < seen + 2;) await new Promise(requestAnimationFrame); };
@@ -113,6 +115,7 @@ try {
         sdkProject: st.projectMs, sdkSort: st.sortMs, sdkGl: st.drawMs,
       });
     }
+    if (window.m4dPlayCanvas.state.box) window.m4dPlayCanvas.state.box.enabled = true;
     return rows;
   }, Number(values.frames));
   const f = (v) => v.toFixed(1).padStart(8);
