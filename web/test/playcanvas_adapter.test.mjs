@@ -83,7 +83,12 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
       await window.m4dPlayCanvas.showFrame(0);
       return window.m4dPlayCanvas.readRgb().reduce((a, b) => a + b, 0);
     });
-    await page.evaluate(() => { window.m4dPlayCanvas.state.box.enabled = false; });
+    const withoutBox = await page.evaluate(async () => {
+      window.m4dPlayCanvas.state.box.enabled = false;
+      for (let i = 0; i < 2; ++i) await new Promise(requestAnimationFrame);
+      return window.m4dPlayCanvas.readRgb().reduce((a, b) => a + b, 0);
+    });
+    assert.notEqual(withBox, withoutBox, 'the box changes the picture');
     const staticEntity = () => page.evaluate(() => window.m4dPlayCanvas.adapter.entities.static.getGuid());
     const reference = (frame) => readFileSync(join(dir, `frame_0000${frame}.png`));
     const guids = [];
@@ -102,8 +107,6 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
     const other = await psnrAgainstPng(page, reference(0));
     t.diagnostic(`frame 3 against frame 0's reference: ${other.toFixed(2)} dB`);
     assert.ok(other < 31, `frame 3 against frame 0's reference: ${other.toFixed(2)} dB`);
-    const without = await page.evaluate(() => window.m4dPlayCanvas.readRgb().reduce((a, b) => a + b, 0));
-    assert.notEqual(withBox, without, 'the box changes the picture');
     // Inter frames keep the static entity; keyframes (which bring a new static layer) rebuild it.
     assert.equal(guids[1], guids[0]);
     assert.equal(guids[3], guids[2]);
@@ -120,6 +123,13 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
         message(() => new adapter.constructor(app, {}))];
     });
     for (const e of errors) assert.match(e, /^TypeError: M4dPlayCanvasAdapter/);
+    // destroy() takes both entities out of the scene.
+    const left = await page.evaluate(() => {
+      const { adapter, app } = window.m4dPlayCanvas;
+      adapter.destroy();
+      return app.root.children.filter((e) => e.name.startsWith('m4d-')).length;
+    });
+    assert.equal(left, 0);
     await page.close();
   } finally {
     files.close();
