@@ -16,7 +16,6 @@
 // entities are not transformed, and `setCaptureCamera` places a PlayCanvas camera so that it
 // sees what a capture camera (fx, fy, cx, cy, world-to-camera R, t) sees.
 
-const SH_BANDS_OF_DEGREE = [0, 1, 2, 3];
 const PAD_LOG_SCALE = -30;
 const PAD_OPACITY = -30;
 
@@ -69,6 +68,19 @@ function fillProperties(props, layer, degree, capacity) {
   }
 }
 
+// A clear error for a layer whose arrays do not hold `count` Gaussians.
+function checkLayer(layer, name) {
+  const fail = (what) => { throw new TypeError(`M4dPlayCanvasAdapter.update: ${name} layer: ${what}`); };
+  if (!layer || typeof layer !== 'object') fail('missing');
+  const n = layer.count, k = layer.shCoefficients;
+  if (!Number.isInteger(n) || n < 0) fail(`bad count ${n}`);
+  if (!Number.isInteger(layer.shDegree) || layer.shDegree < 0 || layer.shDegree > 3) fail(`bad shDegree ${layer.shDegree}`);
+  if (!Number.isInteger(k) || k < 1) fail(`bad shCoefficients ${k}`);
+  for (const [key, per] of [['positions', 3], ['logScales', 3], ['rotations', 4], ['opacityLogits', 1], ['sh', 3 * k]]) {
+    if (!(layer[key] instanceof Float32Array) || layer[key].length < per * n) fail(`${key} must be a Float32Array of ${per * n} values`);
+  }
+}
+
 /** Shows SplatFrames as two gsplat entities (static, dynamic) of a PlayCanvas app. */
 export class M4dPlayCanvasAdapter {
   /**
@@ -108,8 +120,10 @@ export class M4dPlayCanvasAdapter {
     const t0 = performance.now();
     if (frame.staticChanged) {
       if (!frame.static) throw new TypeError('M4dPlayCanvasAdapter.update: staticChanged without a static layer');
-      this._setStatic(frame.static);
+      checkLayer(frame.static, 'static');
     }
+    if (frame.dynamic) checkLayer(frame.dynamic, 'dynamic');
+    if (frame.staticChanged) this._setStatic(frame.static);
     if (frame.dynamic) this._setDynamic(frame.dynamic);
     ++this.stats.frames;
     this.stats.lastUpdateMs = performance.now() - t0;
@@ -124,7 +138,7 @@ export class M4dPlayCanvasAdapter {
   }
 
   _degree(layer) {
-    return SH_BANDS_OF_DEGREE[Math.max(0, Math.min(this.maxShDegree, layer.shDegree | 0))];
+    return Math.max(0, Math.min(this.maxShDegree, layer.shDegree | 0));
   }
 
   _build(name, layer, capacity, degree) {

@@ -38,6 +38,7 @@ const browser = await puppeteer.launch({
   executablePath: process.env.M4D_CHROMIUM || '/usr/bin/chromium',
   headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  protocolTimeout: 0,  // large streams take minutes on SwiftShader
 });
 try {
   const page = await browser.newPage();
