@@ -1,0 +1,105 @@
+// Type declarations of playcanvas_adapter.mjs, the PlayCanvas engine adapter (see its comments).
+// PlayCanvas's objects are typed structurally (the few members the adapter uses): the
+// playcanvas package's declarations need a newer TypeScript than the project's.
+
+/** A pc.Entity. */
+export interface PlayCanvasEntity {
+  addChild(child: PlayCanvasEntity): void;
+  getGuid(): string;
+  destroy(): void;
+  [member: string]: unknown;
+}
+
+/** A pc.AppBase. */
+export interface PlayCanvasApp {
+  graphicsDevice: object;
+  root: PlayCanvasEntity;
+}
+
+/** The playcanvas module (import * as pc from 'playcanvas'). */
+export interface PlayCanvasModule {
+  GSplatData: new (...args: any[]) => object;
+  GSplatResource: new (...args: any[]) => object;
+  Entity: new (name?: string) => PlayCanvasEntity;
+  Mat4: new () => object;
+  Quat: new () => object;
+  [member: string]: unknown;
+}
+
+/** One layer's Gaussians as the viewers take them: owned copies of M4dLayerView's arrays. */
+export interface SplatLayer {
+  count: number;
+  shDegree: number;
+  /** (shDegree + 1)^2 per colour channel. */
+  shCoefficients: number;
+  /** 3 per Gaussian. */
+  positions: Float32Array;
+  /** 3 per Gaussian. */
+  logScales: Float32Array;
+  /** 4 per Gaussian: w, x, y, z (not normalised). */
+  rotations: Float32Array;
+  /** 1 per Gaussian. */
+  opacityLogits: Float32Array;
+  /** 3 * shCoefficients per Gaussian: [k][r, g, b]. */
+  sh: Float32Array;
+}
+
+/** A decoded frame for the adapters; `static` may be null when staticChanged is false. */
+export interface SplatFrame {
+  frameIndex: number;
+  isKeyframe: boolean;
+  layers: number;
+  concealedLayers: number;
+  staticChanged: boolean;
+  static: SplatLayer | null;
+  dynamic: SplatLayer;
+}
+
+/** What update() did so far. */
+export interface M4dPlayCanvasStats {
+  frames: number;
+  staticBuilds: number;
+  dynamicBuilds: number;
+  dynamicInPlace: number;
+  lastUpdateMs: number;
+}
+
+export interface M4dPlayCanvasOptions {
+  /** The entity the layers' entities go under; default app.root. */
+  parent?: PlayCanvasEntity;
+  /** Largest SH degree drawn, 0..3; default 3. */
+  shDegree?: number;
+}
+
+export declare class M4dPlayCanvasAdapter {
+  constructor(app: PlayCanvasApp, pc: PlayCanvasModule, options?: M4dPlayCanvasOptions);
+  readonly stats: M4dPlayCanvasStats;
+  readonly entities: { static: PlayCanvasEntity | null; dynamic: PlayCanvasEntity | null };
+  /** Returns the milliseconds the CPU side took. */
+  update(frame: SplatFrame): number;
+  destroy(): void;
+}
+
+/** A capture camera: world to camera, OpenCV axes, in pixels of a width x height image. */
+export interface M4dCaptureCamera {
+  fx: number;
+  fy: number;
+  cx: number;
+  cy: number;
+  /** 9 values, row-major. */
+  rotation: ArrayLike<number>;
+  translation: ArrayLike<number>;
+  /** Default 0.2. */
+  near?: number;
+  /** Default 1000. */
+  far?: number;
+}
+
+export declare function setCaptureCamera(pc: PlayCanvasModule, cameraEntity: PlayCanvasEntity, camera: M4dCaptureCamera,
+  width?: number, height?: number): void;
+
+/** A SplatFrame copied from a main-thread decoder's frame (an M4dFrame of m4d.mjs). */
+export declare function splatFrameOf(frame: {
+  frameIndex: number; isKeyframe: boolean; layers: number; concealedLayers: number;
+  static: SplatLayer; dynamic: SplatLayer;
+}, staticChanged: boolean): SplatFrame;

@@ -1,0 +1,209 @@
+// An M4D stream played in a PlayCanvas app through the PlayCanvas adapter, next to an ordinary
+// entity (a lit box), decoded on the main thread by the WebAssembly decoder (loadM4d).
+//
+// Query parameters:
+//   stream=URL     the stream (default /out/default.m4d)
+//   module=URL     the directory of m4d.mjs (default /build/web/module/)
+//   cameras=URL    a capture's transforms.json (as `m4d scene` writes); camera=N looks through
+//                  capture camera N (scaled to the canvas's width and centred, as m4d_play does)
+//   width, height  drawing size; autoplay=0 starts paused; box=0 leaves the box out
+import * as pc from 'playcanvas';
+import { M4dPlayCanvasAdapter, setCaptureCamera, splatFrameOf } from '../../adapters/playcanvas_adapter.mjs';
+
+const params = new URLSearchParams(location.search);
+const $ = (id) => document.getElementById(id);
+const canvas = $('view');
+canvas.width = Number(params.get('width')) || 960;
+canvas.height = Number(params.get('height')) || 540;
+
+const moduleUrl = new URL(params.get('module') || '/build/web/module/', location.href).href.replace(/\/?$/, '/');
+const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
+const m4d = await loadM4d();
+const decoder = m4d.openDecoder();
+
+// The app draws at the canvas's own size; the drawing buffer is kept for read-back.
+const device = await pc.createGraphicsDevice(canvas, {
+  deviceTypes: [pc.DEVICETYPE_WEBGL2], antialias: false, preserveDrawingBuffer: true,
+});
+const createOptions = new pc.AppOptions();
+createOptions.graphicsDevice = device;
+createOptions.componentSystems = [pc.RenderComponentSystem, pc.CameraComponentSystem,
+  pc.LightComponentSystem, pc.GSplatComponentSystem];
+createOptions.resourceHandlers = [pc.TextureHandler, pc.ContainerHandler];
+const app = new pc.AppBase(canvas);
+app.init(createOptions);
+app.setCanvasFillMode(pc.FILLMODE_NONE);
+app.setCanvasResolution(pc.RESOLUTION_FIXED, canvas.width, canvas.height);
+
+const camera = new pc.Entity('camera');
+camera.addComponent('camera', { clearColor: new pc.Color(0, 0, 0, 1) });
+app.root.addChild(camera);
+const light = new pc.Entity('light');
+light.addComponent('light', { type: 'directional', intensity: 1.5 });
+light.setEulerAngles(45, 30, 0);
+app.root.addChild(light);
+app.scene.ambientLight = new pc.Color(0.35, 0.35, 0.35);
+app.start();
+
+const adapter = new M4dPlayCanvasAdapter(app, pc);
+const state = { playing: params.get('autoplay') !== '0', ended: false, frame: null, nextDue: 0,
+  staticPending: true, box: null, updateMs: 0, cameraSet: false };
+
+// A capture camera of transforms.json (camera-to-world, OpenGL axes) as world-to-camera in
+// OpenCV axes, scaled to the canvas's width and centred.
+async function captureCamera(url, index) {
+  const json = await (await fetch(url)).json();
+  const names = [...new Set((json.frames || []).map((f) => f.camera || f.file_path))];
+  const f = json.frames.find((g) => (g.camera || g.file_path) === names[index]);
+  if (!f) throw new Error(`${url}: no camera ${index}`);
+  const m = f.transform_matrix, sign = [1, -1, -1], rotation = [], translation = [0, 0, 0];
+  for (let r = 0; r < 3; ++r) {
+    for (let c = 0; c < 3; ++c) {
+      rotation.push(sign[r] * m[c][r]);
+      translation[r] -= sign[r] * m[c][r] * m[c][3];
+    }
+  }
+  const get = (key) => f[key] ?? json[key];
+  const scale = canvas.width / get('w');
+  return { fx: get('fl_x') * scale, fy: get('fl_y') * scale, cx: get('cx') * scale,
+    cy: get('cy') * scale + 0.5 * (canvas.height - get('h') * scale), rotation, translation };
+}
+
+// Without capture cameras: m4d_play's orbit at angle 0 (the player's start) around the first
+// dynamic layer: its mean, three times its spread away; the world's up is the stream's, else -y.
+function orbitCamera(layer) {
+  const c = [0, 0, 0];
+  for (let i = 0; i < layer.count; ++i) for (let a = 0; a < 3; ++a) c[a] += layer.positions[3 * i + a] / layer.count;
+  let sq = 0;
+  for (let i = 0; i < layer.count; ++i) for (let a = 0; a < 3; ++a) sq += (layer.positions[3 * i + a] - c[a]) ** 2;
+  const d = layer.count ? 3 * Math.sqrt(sq / layer.count) : 1;
+  const up = decoder.streamInfo()?.upAxis ?? [0, -1, 0];
+  const a = normalize(cross(up, Math.abs(up[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0])), b = cross(up, a);
+  const eye = [0, 1, 2].map((k) => c[k] + d * (-b[k] + 0.3 * up[k]));
+  const z = normalize(c.map((v, k) => v - eye[k])), x = normalize(cross(z, up)), y = cross(z, x);
+  const rotation = [...x, ...y, ...z];
+  const translation = [0, 1, 2].map((r) => -(rotation[3 * r] * eye[0] + rotation[3 * r + 1] * eye[1] + rotation[3 * r + 2] * eye[2]));
+  const focal = 0.9 * canvas.width;
+  return { centre: c, camera: { fx: focal, fy: focal, cx: canvas.width / 2, cy: canvas.height / 2, rotation, translation, near: 0.05 } };
+}
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const normalize = (a) => { const l = Math.hypot(...a); return a.map((v) => v / l); };
+
+// The box: an ordinary lit entity among the splats (fixed in the world, placed once between
+// the camera and the dynamic layer's centre, to its right), drawn with the same depth buffer.
+function addBox(centre) {
+  const material = new pc.StandardMaterial();
+  material.diffuse = new pc.Color(0.9, 0.5, 0.2);
+  material.update();
+  const box = new pc.Entity('box');
+  box.addComponent('render', { type: 'box', material });
+  const eye = camera.getPosition(), right = camera.right;
+  const to = [centre[0] - eye.x, centre[1] - eye.y, centre[2] - eye.z], d = Math.hypot(...to);
+  box.setLocalScale(0.12 * d, 0.12 * d, 0.12 * d);
+  box.setPosition(eye.x + 0.6 * to[0] + 0.15 * d * right.x, eye.y + 0.6 * to[1] + 0.15 * d * right.y,
+    eye.z + 0.6 * to[2] + 0.15 * d * right.z);
+  box.setEulerAngles(20, 30, 0);
+  app.root.addChild(box);
+  state.box = box;
+}
+
+// Decodes the next frame (after a seek when `seekTo` is given) and hands it to the adapter.
+function advance(seekTo) {
+  if (seekTo !== undefined) {
+    if (!decoder.seek(seekTo)) return false;
+    state.staticPending = true;
+  }
+  let frame = decoder.nextFrame();
+  if (!frame && state.ended && state.frame) {
+    decoder.seek(0);  // loop
+    state.staticPending = true;
+    frame = decoder.nextFrame();
+  }
+  if (!frame) return false;
+  // The main-thread decoder does not say when the static layer changes: at keyframes, or
+  // after a seek. (The worker decoder's SplatFrames carry staticChanged themselves.)
+  const splatFrame = splatFrameOf(frame, state.staticPending || frame.isKeyframe);
+  state.staticPending = false;
+  if (!state.cameraSet) {
+    const orbit = orbitCamera(splatFrame.dynamic.count ? splatFrame.dynamic : splatFrame.static);
+    if (!params.get('cameras')) setCaptureCamera(pc, camera, orbit.camera, canvas.width, canvas.height);
+    if (params.get('box') !== '0') addBox(orbit.centre);
+    state.cameraSet = true;
+  }
+  state.updateMs = adapter.update(splatFrame);
+  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe };
+  $('frame').textContent = `frame ${frame.frameIndex}${frame.isKeyframe ? ' (key)' : ''}`;
+  return true;
+}
+
+app.on('update', () => {
+  const info = decoder.streamInfo();
+  const period = 1000 / (info && info.fps > 0 ? info.fps : 30), now = performance.now();
+  if ((state.playing && now >= state.nextDue) || !state.frame) {
+    if (advance()) state.nextDue = Math.max(now, state.nextDue + period);
+  }
+  $('readout').textContent = `update ${state.updateMs.toFixed(1)} ms`;
+});
+$('play').textContent = state.playing ? 'Pause' : 'Play';
+$('play').onclick = () => {
+  state.playing = !state.playing;
+  $('play').textContent = state.playing ? 'Pause' : 'Play';
+};
+
+// The splats are drawn once PlayCanvas's sorter has answered for the current splats.
+let readyCount = 0;
+app.systems.gsplat.on('frame:ready', (_camera, _layer, ready) => { if (ready) ++readyCount; });
+const nextFrame = () => new Promise(requestAnimationFrame);
+
+// For tests and embedding pages.
+window.m4dPlayCanvas = {
+  app, pc, adapter, state, decoder, camera,
+  // Pauses, shows frame `index` once its bytes have arrived (decoding from its random-access
+  // point, or on from the frame shown), and resolves after a sorted drawing of it.
+  async showFrame(index) {
+    state.playing = false;
+    if (!state.frame || index <= state.frame.index) {
+      while (!advance(index)) await nextFrame();
+    }
+    while (state.frame.index !== index) {
+      if (!advance()) await nextFrame();
+    }
+    for (const seen = readyCount; readyCount < seen + 2;) await nextFrame();
+    await nextFrame();
+    return state.frame.index;
+  },
+  // The canvas as RGB bytes, top row first.
+  readRgb() {
+    const gl = device.gl, { width, height } = canvas;
+    const rgba = new Uint8Array(4 * width * height);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
+    const rgb = new Uint8Array(3 * width * height);
+    for (let y = 0; y < height; ++y) {
+      for (let x = 0; x < width; ++x) {
+        const from = 4 * ((height - 1 - y) * width + x), to = 3 * (y * width + x);
+        rgb[to] = rgba[from]; rgb[to + 1] = rgba[from + 1]; rgb[to + 2] = rgba[from + 2];
+      }
+    }
+    return rgb;
+  },
+  loaded: null,
+};
+
+async function load() {
+  if (params.get('cameras')) {
+    setCaptureCamera(pc, camera, await captureCamera(params.get('cameras'), Number(params.get('camera') || 0)),
+      canvas.width, canvas.height);
+  }
+  const response = await fetch(params.get('stream') || '/out/default.m4d');
+  if (!response.ok) throw new Error(`${response.url}: HTTP ${response.status}`);
+  const reader = response.body.getReader();
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    decoder.push(value);
+  }
+  decoder.end();
+  state.ended = true;
+}
+window.m4dPlayCanvas.loaded = load().catch((e) => { state.ended = true; $('error').textContent = String(e.message || e); });
