@@ -19,10 +19,12 @@
 #include "pipeline/sequence_encoder.h"
 #include "ply/gaussian_ply.h"
 #include "rate_point_name.h"
+#include "rendition_manifest.h"
 #include "sequence_report_output.h"
 #include "strategy_arguments.h"
 #include "stream/frame_rate.h"
 #include "stream_check.h"
+#include "train/keyframe_stage.h"
 #include "train/progress_bar.h"
 #include "video/video_writer.h"
 #include "view_strip.h"
@@ -641,6 +643,151 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   return Status::Ok();
 }
 
+namespace {
+
+// The renditions' names checked and their outputs writable, before any work.
+Status CheckRenditionOutputs(const EncodeArguments& args, bool force) {
+  if (!args.rate_point.empty()) {
+    return Status(M4D_ERR_INVALID_ARG, "--renditions names the rate points: no --rate-point");
+  }
+  if (args.chunk_frames > 0 || CurrentRanks().size > 1 || !args.views.empty() ||
+      !args.json.empty() || args.keyframe_source || args.encoder.independent_frames) {
+    return Status(M4D_ERR_INVALID_ARG,
+                  "--renditions codes no chunks (--chunk-frames, MPI), no --views, no --json "
+                  "(each rendition's report is beside its stream) and no baseline");
+  }
+  std::vector<std::string> outputs;
+  for (size_t r = 0; r < args.renditions.size(); ++r) {
+    const std::string& id = args.renditions[r];
+    RatePointSettings point;
+    M4D_RETURN_IF_ERROR(FindRatePoint(id, &point));
+    if (std::find(args.renditions.begin(), args.renditions.begin() + r, id) !=
+        args.renditions.begin() + r) {
+      return Status(M4D_ERR_INVALID_ARG, "--renditions: " + id + " given twice");
+    }
+    outputs.push_back(RenditionPath(args.output, id));
+    outputs.push_back(RenditionPath(args.output, id) + ".json");
+  }
+  outputs.push_back(ManifestPath(args.output));
+  for (const std::string& path : outputs) {
+    std::error_code ec;
+    if (!force && std::filesystem::is_regular_file(path, ec)) {
+      return Status(M4D_ERR_INVALID_ARG, path + " exists: give --force to replace it");
+    }
+  }
+  for (const std::string& path : outputs) M4D_RETURN_IF_ERROR(CheckOutputPath(path));
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status RunRenditionEncode(const EncodeArguments& args, bool force) {
+  M4D_RETURN_IF_ERROR(CheckRenditionOutputs(args, force));
+  const size_t count = args.renditions.size();
+  std::vector<EncoderOptions> options(count);
+  for (size_t r = 0; r < count; ++r) {
+    EncodeArguments point = args;
+    point.rate_point = args.renditions[r];
+    M4D_RETURN_IF_ERROR(ResolveEncoderOptions(point, &options[r]));
+  }
+  uint32_t unused_num, unused_den;
+  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
+  Capture capture;
+  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
+  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options[0]));
+  M4D_RETURN_IF_ERROR(ChooseUpAxis(args.up, capture, &options[0]));
+  M4D_RETURN_IF_ERROR(
+      CheckViewsBeforeTraining(capture, options[0].first_frame, options[0].frame_count));
+  // The first rendition's settings train the shared keyframe; automatic choices made for it
+  // hold for every rendition.
+  EncodeArguments first_args = args;
+  first_args.rate_point = args.renditions[0];
+  AutomaticChoices choices;
+  M4D_RETURN_IF_ERROR(ResolveAutomaticChoices(first_args, capture, &options[0], &choices));
+  for (size_t r = 1; r < count; ++r) {
+    options[r].fps_num = options[0].fps_num;
+    options[r].fps_den = options[0].fps_den;
+    options[r].up_axis = options[0].up_axis;
+    options[r].keyframe.importance_prune_share = options[0].keyframe.importance_prune_share;
+    if (args.keyframe_rate.automatic && choices.trains_first) {
+      options[r].keyframe_rate_weight = options[0].keyframe_rate_weight;
+    }
+  }
+
+  EncodeProgress progress;
+  GaussianModel first;
+  if (!args.keyframe_ply.empty()) {
+    M4D_RETURN_IF_ERROR(ReadFirstKeyframe(args, options[0].sh_degree, &first));
+  } else {
+    EncoderCallbacks callbacks = progress.Callbacks();
+    const int frame = options[0].first_frame;
+    M4D_RETURN_IF_ERROR(TrainKeyframe(
+        capture, frame, FirstKeyframeTraining(options[0]),
+        [&](const TrainingProgress& p) { callbacks.training("keyframe", frame, p); }, &first));
+  }
+
+  std::vector<std::vector<uint8_t>> streams(count);
+  std::vector<SequenceReport> reports(count);
+  for (size_t r = 0; r < count; ++r) {
+    std::printf("\nrendition %s%s\n", args.renditions[r].c_str(),
+                r == 0 ? " (decides the GOPs)" : "");
+    progress.header = true;
+    SequenceEncoder encoder(capture, options[r]);
+    encoder.SetFirstKeyframe(first);
+    M4D_RETURN_IF_ERROR(encoder.Encode(progress.Callbacks(), &reports[r]));
+    reports[r].peak_memory_bytes = PeakMemoryBytes();
+    PrintSummary(stdout, reports[r]);
+    streams[r] = encoder.stream();
+    if (r > 0) continue;
+    for (const FrameReport& f : reports[0].frames) {
+      const int frame = static_cast<int>(f.frame_index);
+      if (f.keyframe && frame != options[0].first_frame) {
+        for (size_t o = 1; o < count; ++o) options[o].gop.starts.push_back(frame);
+      }
+    }
+  }
+
+  std::vector<RenditionStream> manifest_streams;
+  for (size_t r = 0; r < count; ++r) {
+    const std::string& id = args.renditions[r];
+    const std::string path = RenditionPath(args.output, id);
+    M4D_RETURN_IF_ERROR(WriteFileAtomically(path, streams[r].data(), streams[r].size()));
+    EncodeArguments point = args;
+    point.rate_point = id;
+    const nlohmann::json extra = {{"options", EncodeOptionsJson(point)},
+                                  {"rendition",
+                                   {{"id", id},
+                                    {"keyframe_shared_with", args.renditions},
+                                    {"gops_from", args.renditions[0]}}}};
+    M4D_RETURN_IF_ERROR(WriteReportJson(path + ".json", reports[r], extra.dump()));
+    M4D_RETURN_IF_ERROR(CheckDecodedHashes(streams[r], reports[r]));
+    manifest_streams.push_back(
+        {id, id, std::filesystem::path(path).filename().string(), &streams[r]});
+  }
+  std::string manifest;
+  M4D_RETURN_IF_ERROR(RenditionManifestJson(manifest_streams, &manifest));
+  const std::string manifest_path = ManifestPath(args.output);
+  M4D_RETURN_IF_ERROR(WriteFileAtomically(
+      manifest_path, reinterpret_cast<const uint8_t*>(manifest.data()), manifest.size()));
+  std::printf("\n%-34s %zu renditions, every frame decoded by the SDK to the encoder's hash\n",
+              "decoder check", count);
+  std::printf("%-10s %12s %10s %8s\n", "rendition", "bytes", "kbit/s", "PSNR");
+  for (size_t r = 0; r < count; ++r) {
+    double psnr = 0;
+    int measured = 0;
+    for (const FrameReport& f : reports[r].frames) {
+      if (f.held_out) psnr += f.psnr, ++measured;
+    }
+    const double seconds =
+        static_cast<double>(reports[r].frames.size()) * options[0].fps_den / options[0].fps_num;
+    std::printf("%-10s %12zu %10.1f %8.2f\n", args.renditions[r].c_str(), streams[r].size(),
+                8.0 * static_cast<double>(streams[r].size()) / seconds / 1000.0,
+                measured > 0 ? psnr / measured : 0.0);
+  }
+  std::printf("%-34s %s\n", "manifest", manifest_path.c_str());
+  return Status::Ok();
+}
+
 void AddEncodeCommand(CLI::App* app, int* exit_code) {
   auto args = std::make_shared<EncodeArguments>();
   CLI::App* cmd = app->add_subcommand("encode", "encode a multi-view video into an M4D stream");
@@ -671,9 +818,22 @@ void AddEncodeCommand(CLI::App* app, int* exit_code) {
   cmd->add_option("--max-chunks", args->max_chunks,
                   "stop after coding this many chunks (per rank); the same command resumes")
       ->check(m4d::Positive());
+  cmd->add_option("--renditions", args->renditions,
+                  "rate points (e.g. r1,r3,r5) coded as renditions from one first keyframe with "
+                  "aligned GOPs, the first deciding the GOPs: OUT.r1.m4d ... beside -o OUT.m4d, "
+                  "and OUT.manifest.json listing them for adaptive bitrate")
+      ->delimiter(',')
+      ->check(RatePointName())
+      ->excludes("--lambda");
   auto overwrite = std::make_shared<bool>(false);
   cmd->add_flag("-f,--force", *overwrite, "replace an existing stream (else refused)");
   cmd->callback([args, overwrite, exit_code]() {
+    if (!args->renditions.empty()) {
+      const Status checked = CheckRenditionOutputs(*args, *overwrite);
+      *exit_code = checked.ok() ? ReportStatus("encode", RunRenditionEncode(*args, *overwrite))
+                                : 2 * ReportStatus("encode", checked);  // before any work
+      return;
+    }
     std::error_code ec;
     if (!*overwrite && std::filesystem::is_regular_file(args->output, ec)) {
       ReportStatus("encode",

@@ -48,6 +48,9 @@ struct EncodeArguments {
   int chunk_frames = 0;     // chunked encoding (chunked_encode.h): frames per chunk (0: none)
   std::string checkpoint_dir;  // its checkpoints (default: output + ".chunks")
   int max_chunks = 0;          // stop after coding this many chunks (0: no limit)
+  // Rate points of renditions coded from one first keyframe with aligned GOPs, each written to
+  // RenditionPath(output, point), with the manifest at ManifestPath(output) (empty: one stream).
+  std::vector<std::string> renditions;
   // Frame -> model trained earlier, for --independent-frames (empty: train each frame).
   std::function<Status(int frame, GaussianModel* model)> keyframe_source;
 };
@@ -71,6 +74,12 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args);
 
 // Encodes with progress on stderr and the frame table on stdout; writes stream and JSON.
 Status RunEncode(const EncodeArguments& args, SequenceReport* report);
+
+// Encodes args.renditions: the first keyframe trained once (or read from args.keyframe_ply),
+// then each rendition's sequence from it; the first rendition's GOP starts are imposed on the
+// others (so random-access points are aligned too). Writes every stream with its JSON report,
+// then the manifest. Outputs that exist are refused unless `force`.
+Status RunRenditionEncode(const EncodeArguments& args, bool force);
 
 void AddEncodeCommand(CLI::App* app, int* exit_code);
 

@@ -7,6 +7,7 @@
 #define M4D_ENCODER_PIPELINE_ENCODER_OPTIONS_H_
 
 #include <cstdint>
+#include <vector>
 
 #include "compensation/compensation_candidates.h"
 #include "compensation/compensation_training.h"
@@ -46,6 +47,10 @@ struct GopOptions {
   // dependent one (bitstream 0.3): it keeps the static set and re-sends the dynamic layer only.
   // 0: every GOP is a random-access point, with its static layer.
   double random_access_seconds = 10.0;
+  // When not empty, the GOPs start at exactly these frames (ascending; the first frame's GOP
+  // needs no entry) and at no other: adaptive, fixed and maximum lengths are ignored. Aligns
+  // the GOPs of renditions coded from one sequence with those another rendition chose.
+  std::vector<int> starts;
 };
 
 struct EncoderOptions {

@@ -185,6 +185,7 @@ Status ValidateEncoderOptions(const EncoderOptions& o) {
     return bad("GOP lengths");
   }
   if (!(o.gop.threshold >= 0.0f)) return bad("GOP threshold");
+  if (!std::is_sorted(o.gop.starts.begin(), o.gop.starts.end())) return bad("GOP starts");
   if (!(o.gop.random_access_seconds >= 0.0 && o.gop.random_access_seconds <= 1e6)) {
     return bad("random-access interval");
   }
@@ -429,8 +430,11 @@ Status SequenceEncoder::WriteKeyframe() {
 Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   Gop& gop = *gop_;
   const int length = frame - gop.start;  // frames in the GOP so far
+  const std::vector<int>& starts = options_.gop.starts;
   const bool fixed = !options_.gop.adaptive && options_.gop.fixed_length > 0;
-  if (length >= options_.gop.max_length || (fixed && length >= options_.gop.fixed_length)) {
+  const bool imposed = std::binary_search(starts.begin(), starts.end(), frame);
+  if (imposed || (starts.empty() && (length >= options_.gop.max_length ||
+                                     (fixed && length >= options_.gop.fixed_length)))) {
     *restart = true;
     gop.predicted = gop.dynamic_set;  // no motion estimated: the last frame's
     gop.prediction_psnr = 0;
@@ -535,7 +539,7 @@ Status SequenceEncoder::EncodeInterFrame(int frame, bool* restart) {
   if (options_.gop.noise_gap && length == 1) M4D_RETURN_IF_ERROR(NoiseGap(views, &gop.noise_gap));
   report.psnr_reference = gop.keyframe_report.training_psnr - gop.noise_gap;
   const double drop = report.psnr_reference - report.training_psnr;
-  if (options_.gop.adaptive && length >= options_.gop.min_length &&
+  if (options_.gop.adaptive && starts.empty() && length >= options_.gop.min_length &&
       (report.ratio > options_.gop.threshold ||
        (options_.gop.max_psnr_drop > 0 && drop > options_.gop.max_psnr_drop))) {
     *restart = true;  // frame becomes the next GOP's keyframe; nothing of it is written
