@@ -36,6 +36,15 @@ export interface SplatFrame {
 export declare const SH_C0: number;
 export declare function copySplatLayer(layerView: M4dLayerView | SplatLayer): SplatLayer;
 export declare function splatFrameFromDecoder(frame: M4dFrame, options?: { staticChanged?: boolean }): SplatFrame;
+/** SplatFrames from a main-thread decoder's frames, with staticChanged set from the layers. */
+export declare class SplatFrameMaker {
+  constructor();
+  /** The static layer last sent (an owned copy), or null. */
+  readonly lastStatic: SplatLayer | null;
+  /** The next frame carries its static layer (call after a seek). */
+  reset(): void;
+  make(frame: M4dFrame): SplatFrame;
+}
 export declare function transferablesOf(splatFrame: SplatFrame): ArrayBuffer[];
 export declare function layersEqual(a: M4dLayerView | SplatLayer | null, b: M4dLayerView | SplatLayer | null): boolean;
 export declare function linearScales(layer: M4dLayerView | SplatLayer, out?: Float32Array): Float32Array;

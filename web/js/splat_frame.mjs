@@ -43,6 +43,36 @@ export function splatFrameFromDecoder(frame, options = {}) {
   };
 }
 
+// Makes SplatFrames from a main-thread decoder's frames (M4dDecoder.nextFrame) and sets
+// staticChanged itself: true on the first frame, on the first frame after reset() (call it
+// after a seek), and at a keyframe whose static layer differs from the one last sent (a
+// random-access keyframe or a STATIC_UPDATE; the static set changes only at keyframes,
+// bitstream-spec 6.2). The worker decoder (m4d_worker.mjs) uses it too.
+export class SplatFrameMaker {
+  constructor() {
+    /** An owned copy of the static layer last sent, or null. */
+    this.lastStatic = null;
+    this.stale = true;
+  }
+
+  // The next frame sends its static layer whatever it is (after a seek, a new stream).
+  reset() {
+    this.stale = true;
+  }
+
+  // The SplatFrame of an M4dFrame (the decoder's views are copied; `frame` may be reused after).
+  make(frame) {
+    const staticChanged = this.stale || (frame.isKeyframe && !layersEqual(frame.static, this.lastStatic));
+    const splat = splatFrameFromDecoder(frame, { staticChanged });
+    if (staticChanged) {
+      // The frame's own copy goes out (and may be transferred): keep another to compare with.
+      this.lastStatic = copySplatLayer(splat.static);
+      this.stale = false;
+    }
+    return splat;
+  }
+}
+
 // The distinct ArrayBuffers of a SplatFrame's layers, for postMessage's transfer list.
 export function transferablesOf(splatFrame) {
   const buffers = new Set();

@@ -58,6 +58,7 @@ test('every export and member the package\'s TypeScript declarations declare exi
   const instances = {
     M4dWorkerDecoder: (api) => new api.M4dWorkerDecoder(),
     PlayerCore: (api) => new api.PlayerCore({ nextFrame: async () => null, seek: async () => false }),
+    SplatFrameMaker: (api) => new api.SplatFrameMaker(),
   };
   let checked = 0;
   for (const name of ['splat_frame', 'worker_decoder', 'player_core']) {

@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { test } from 'node:test';
 import {
   SH_C0, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
-  splatFrameFromDecoder, transferablesOf,
+  SplatFrameMaker, splatFrameFromDecoder, transferablesOf,
 } from '../js/splat_frame.mjs';
 
 const root = new URL('../../', import.meta.url);
@@ -37,6 +37,29 @@ test('copies a decoded frame into owned arrays and lists their buffers', async (
   // The copy outlives the decoder.
   decoder.close();
   assert.ok(Number.isFinite(frame.dynamic.positions[0]));
+});
+
+test('SplatFrameMaker sends the static layer when it changes: first frame, static update, seek', async () => {
+  const m4d = await loadM4d();
+  const decoder = m4d.openDecoder();
+  decoder.push(readFileSync(new URL('conformance/streams/enc_adaptive_gop.m4d', root)));
+  decoder.end();
+  const maker = new SplatFrameMaker();
+  const made = [];
+  for (let f; (f = decoder.nextFrame());) made.push(maker.make(f));
+  // GOPs of 2; frames 2 and 4 are keyframes with a STATIC_UPDATE (843, 987, 1239 static Gaussians).
+  assert.deepEqual(made.map((f) => f.staticChanged), [true, false, true, false, true, false]);
+  assert.deepEqual(made.filter((f) => f.static).map((f) => f.static.count), [843, 987, 1239]);
+  assert.ok(layersEqual(maker.lastStatic, made[4].static));
+  assert.notEqual(maker.lastStatic.positions.buffer, made[4].static.positions.buffer);  // its own copy
+  // After a seek the next frame carries its static layer even when it did not change.
+  assert.equal(decoder.seek(5), true);
+  maker.reset();
+  const after = maker.make(decoder.nextFrame());
+  assert.equal(after.frameIndex, 5);
+  assert.equal(after.staticChanged, true);
+  assert.ok(layersEqual(after.static, made[4].static));
+  decoder.close();
 });
 
 test('converts to the layouts viewers take', () => {
