@@ -131,9 +131,9 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
         message(() => adapter.update({ staticChanged: false, static: null, dynamic: { count: 2, shDegree: 0,
           shCoefficients: 1, positions: new Float32Array(3), logScales: new Float32Array(6), rotations: new Float32Array(8),
           opacityLogits: new Float32Array(2), sh: new Float32Array(6) } }))];
-    assert.match(errors[3], /dynamic layer: positions must be a Float32Array of 6 values/);
     });
     for (const e of errors) assert.match(e, /^TypeError: M4dPlayCanvasAdapter/);
+    assert.match(errors[3], /dynamic layer: positions must be a Float32Array of 6 values/);
     // destroy() takes both entities out of the scene.
     const left = await page.evaluate(() => {
       const { adapter, app } = window.m4dPlayCanvas;
@@ -146,5 +146,37 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
   } finally {
     files.close();
     rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// The page decodes in a Web Worker (M4dWorkerDecoder) paced by PlayerCore: it shows frames in
+// order (dropping some if decoding fell behind) and loops; the main thread loads no wasm.
+test('plays through the worker decoder at the stream fps, looping at the end', async () => {
+  const page = await openExample('stream=/conformance/streams/enc_adaptive_gop.m4d&width=96&height=72');
+  try {
+    await page.waitForFunction(() => {
+      const h = window.m4dPlayCanvas.state.history;
+      return h.some((f, i) => i > 0 && f < h[i - 1]) && h.at(-1) >= 2;
+    }, { timeout: 15000 });
+    const seen = await page.evaluate(() => {
+      const { decoder, core, state } = window.m4dPlayCanvas;
+      return {
+        worker: decoder.constructor.name, fps: decoder.streamInfo().fps, playing: core.playing,
+        stats: { ...core.stats }, history: state.history.slice(),
+        wasmOnPage: performance.getEntriesByType('resource').filter((e) => /m4d_wasm|m4d\.mjs/.test(e.name)).map((e) => e.name),
+      };
+    });
+    assert.equal(seen.worker, 'M4dWorkerDecoder');
+    assert.equal(seen.fps, 30);
+    assert.equal(seen.playing, true);
+    assert.deepEqual(seen.wasmOnPage, [], 'the decoder is loaded by the worker only');
+    const h = seen.history;
+    assert.ok(h.every((f) => Number.isInteger(f) && f >= 0 && f < 6), h.join(' '));
+    for (let i = 1; i < h.length; ++i) {
+      assert.ok(h[i] > h[i - 1] || h[i] === 0, `frame ${h[i]} after ${h[i - 1]}: ${h.join(' ')}`);
+    }
+    assert.ok(seen.stats.shown >= h.length);
+  } finally {
+    await page.close();
   }
 });

@@ -155,3 +155,35 @@ test('draws capture camera 1 close to the native renderer', async (t) => {
     await page.close();
   }
 });
+
+// The page decodes in a Web Worker (M4dWorkerDecoder) paced by PlayerCore: it shows frames in
+// order (dropping some if decoding fell behind) and loops; the main thread loads no wasm.
+test('plays through the worker decoder at the stream fps, looping at the end', async () => {
+  const page = await openExample(`stream=/${stream}&width=96&height=72`);
+  try {
+    await page.waitForFunction(() => {
+      const h = window.m4dSpark.state.history;
+      return h.some((f, i) => i > 0 && f < h[i - 1]) && h.at(-1) >= 2;
+    }, { timeout: 15000 });
+    const seen = await page.evaluate(() => {
+      const { decoder, core, state } = window.m4dSpark;
+      return {
+        worker: decoder.constructor.name, fps: decoder.streamInfo().fps, playing: core.playing,
+        stats: { ...core.stats }, history: state.history.slice(),
+        wasmOnPage: performance.getEntriesByType('resource').filter((e) => /m4d_wasm|m4d\.mjs/.test(e.name)).map((e) => e.name),
+      };
+    });
+    assert.equal(seen.worker, 'M4dWorkerDecoder');
+    assert.equal(seen.fps, 30);
+    assert.equal(seen.playing, true);
+    assert.deepEqual(seen.wasmOnPage, [], 'the decoder is loaded by the worker only');
+    const h = seen.history;
+    assert.ok(h.every((f) => Number.isInteger(f) && f >= 0 && f < 6), h.join(' '));
+    for (let i = 1; i < h.length; ++i) {
+      assert.ok(h[i] > h[i - 1] || h[i] === 0, `frame ${h[i]} after ${h[i - 1]}: ${h.join(' ')}`);
+    }
+    assert.ok(seen.stats.shown >= h.length);
+  } finally {
+    await page.close();
+  }
+});
