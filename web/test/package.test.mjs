@@ -76,6 +76,7 @@ test('every export and member the package\'s TypeScript declarations declare exi
     M4dWorkerDecoder: (api) => new api.M4dWorkerDecoder(),
     PlayerCore: (api) => new api.PlayerCore({ nextFrame: async () => null, seek: async () => false }),
     SplatFrameMaker: (api) => new api.SplatFrameMaker(),
+    DecoderFrameSource: (api) => new api.DecoderFrameSource({ nextFrame: () => null, seek: () => true }),
   };
   let checked = 0;
   for (const name of ['splat_frame', 'worker_decoder', 'player_core']) {

@@ -5,8 +5,9 @@ import { readFileSync } from 'node:fs';
 import { test } from 'node:test';
 import {
   SH_C0, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
-  SplatFrameMaker, splatFrameFromDecoder, transferablesOf,
+  DecoderFrameSource, SplatFrameMaker, splatFrameFromDecoder, transferablesOf,
 } from '../js/splat_frame.mjs';
+import { PlayerCore } from '../js/player_core.mjs';
 
 const root = new URL('../../', import.meta.url);
 const { loadM4d } = await import(new URL('build/web/module/m4d.mjs', root));
@@ -59,6 +60,37 @@ test('SplatFrameMaker sends the static layer when it changes: first frame, stati
   assert.equal(after.frameIndex, 5);
   assert.equal(after.staticChanged, true);
   assert.ok(layersEqual(after.static, made[4].static));
+  decoder.close();
+});
+
+test('DecoderFrameSource feeds PlayerCore from a main-thread decoder', async () => {
+  const m4d = await loadM4d();
+  const decoder = m4d.openDecoder();
+  decoder.push(readFileSync(new URL('conformance/streams/enc_adaptive_gop.m4d', root)));
+  decoder.end();
+  const source = new DecoderFrameSource(decoder);
+  const core = new PlayerCore(source, { maxQueue: 1 });
+  const flush = async () => { for (let i = 0; i < 10; ++i) await new Promise((done) => setImmediate(done)); };
+  const shown = [];
+  await flush();
+  shown.push(core.tick(0));
+  for (let f = 1; f < 6; ++f) {
+    core.step();
+    await flush();
+    shown.push(core.tick(f));
+  }
+  assert.deepEqual(shown.map((f) => f.frameIndex), [0, 1, 2, 3, 4, 5]);
+  assert.deepEqual(shown.map((f) => f.staticChanged), [true, false, true, false, true, false]);
+  assert.equal(source.streamInfo().fps, 30);
+  await flush();
+  assert.equal(core.ended, true);
+  assert.equal(await core.seek(3), true);
+  await flush();
+  const again = core.tick(100);
+  assert.equal(again.frameIndex, 3);
+  assert.equal(again.staticChanged, true);
+  assert.equal(again.static.count, 987);
+  assert.throws(() => new DecoderFrameSource({}), /needs nextFrame\(\) and seek\(\)/);
   decoder.close();
 });
 
