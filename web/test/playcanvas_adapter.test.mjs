@@ -5,7 +5,7 @@
 // frames. Needs scripts/build.sh (m4d, m4d_play) and scripts/build_web.sh.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
@@ -178,5 +178,35 @@ test('plays through the worker decoder at the stream fps, looping at the end', a
     assert.ok(seen.stats.shown >= h.length);
   } finally {
     await page.close();
+  }
+});
+
+// gops=1: frames come through a GopStreamer (range requests by GOP) instead of the worker.
+test('gops=1 plays by GOP with range requests only', async () => {
+  const gopDir = mkdtempSync(join(tmpdir(), 'm4d-playcanvas-gops-'));
+  const served = [];
+  let gopServer;
+  try {
+    copyFileSync(join(root, 'conformance/streams/enc_adaptive_gop.m4d'), join(gopDir, 's.m4d'));
+    execFileSync(join(root, 'build/release/tools/m4d_probe'), ['--gop-index', join(gopDir, 's.m4d'), '-o', join(gopDir, 's.m4d.gops.json')]);
+    gopServer = await serve(gopDir, 0, { onRequest: (r) => served.push(r) });
+    const url = `http://127.0.0.1:${gopServer.address().port}/s.m4d`;
+    const page = await openExample(`stream=${encodeURIComponent(url)}&gops=1&width=96&height=72&autoplay=0`);
+    try {
+      assert.equal(await page.evaluate(() => window.m4dPlayCanvas.showFrame(3)), 3);
+      const seen = await page.evaluate(() => ({
+        source: window.m4dPlayCanvas.decoder.constructor.name, gops: window.m4dPlayCanvas.streamer.requests.map((r) => r.gop),
+      }));
+      assert.equal(seen.source, 'DecoderFrameSource');
+      const ranges = served.filter((r) => r.path === '/s.m4d');
+      assert.ok(ranges.length === seen.gops.length && ranges.every((r) => r.status === 206), JSON.stringify(ranges));
+      assert.equal(new Set(seen.gops).size, seen.gops.length);
+      assert.deepEqual(page.problems, []);
+    } finally {
+      await page.close();
+    }
+  } finally {
+    gopServer?.close();
+    rmSync(gopDir, { recursive: true, force: true });
   }
 });

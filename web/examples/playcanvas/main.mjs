@@ -9,9 +9,14 @@
 //   cameras=URL    a capture's transforms.json (as `m4d scene` writes); camera=N looks through
 //                  capture camera N (scaled to the canvas's width and centred, as m4d_play does)
 //   width, height  drawing size; autoplay=0 starts paused; box=0 leaves the box out
+//   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
+//                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
+//                  instead of one fetch into the worker decoder
 import * as pc from 'playcanvas';
 import { M4dPlayCanvasAdapter, setCaptureCamera } from '../../adapters/playcanvas_adapter.mjs';
+import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
+import { DecoderFrameSource } from '../../js/splat_frame.mjs';
 import { M4dWorkerDecoder } from '../../js/worker_decoder.mjs';
 
 const params = new URLSearchParams(location.search);
@@ -21,8 +26,22 @@ canvas.width = Number(params.get('width')) || 960;
 canvas.height = Number(params.get('height')) || 540;
 
 const moduleUrl = new URL(params.get('module') || '/build/web/module/', location.href).href.replace(/\/?$/, '/');
-const decoder = new M4dWorkerDecoder({ moduleUrl: new URL('m4d.mjs', moduleUrl).href });
-await decoder.open();
+const streamUrl = new URL(params.get('stream') || '/out/default.m4d', location.href).href;
+// The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
+let decoder, streamer = null;
+try {
+  if (params.get('gops') === '1') {
+    const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
+    streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
+    decoder = new DecoderFrameSource(streamer);
+  } else {
+    decoder = new M4dWorkerDecoder({ moduleUrl: new URL('m4d.mjs', moduleUrl).href });
+    await decoder.open();
+  }
+} catch (error) {
+  $('error').textContent = String(error.message || error);
+  throw error;
+}
 const core = new PlayerCore(decoder);
 
 // The app draws at the canvas's own size; the drawing buffer is kept for read-back.
@@ -142,7 +161,7 @@ function show(splatFrame) {
 
 app.on('update', () => {
   advance(performance.now());
-  $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (worker)   update ${state.updateMs.toFixed(1)} ms   ` +
+  $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
     `dropped ${core.stats.dropped}`;
 });
 $('play').textContent = state.playing ? 'Pause' : 'Play';
@@ -159,7 +178,7 @@ const nextFrame = () => new Promise(requestAnimationFrame);
 
 // For tests and embedding pages.
 window.m4dPlayCanvas = {
-  app, pc, adapter, state, decoder, core, camera,
+  app, pc, adapter, state, decoder, core, streamer, camera,
   // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
   // worker decoder, waiting for its bytes), and resolves after a sorted drawing of it.
   async showFrame(index) {
@@ -207,7 +226,11 @@ async function load() {
     setCaptureCamera(pc, camera, await captureCamera(params.get('cameras'), Number(params.get('camera') || 0)),
       canvas.width, canvas.height);
   }
-  const response = await fetch(params.get('stream') || '/out/default.m4d');
+  if (streamer) {
+    state.ended = true;  // the streamer fetches GOPs as frames are asked for
+    return;
+  }
+  const response = await fetch(streamUrl);
   if (!response.ok) throw new Error(`${response.url}: HTTP ${response.status}`);
   const reader = response.body.getReader();
   for (;;) {

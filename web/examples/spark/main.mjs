@@ -11,12 +11,17 @@
 //   width, height  drawing size (default 960x540); autoplay=0 starts paused
 //   mesh=0         leaves the three.js mesh out
 //   spark=default  Spark's own renderer settings (else m4dSparkRendererOptions(): as M4D's)
+//   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
+//                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
+//                  instead of one fetch into the worker decoder
 import * as THREE from 'three';
 import * as spark from '@sparkjsdev/spark';
 import {
   M4dSparkAdapter, camerasOfTransforms, fitCaptureCamera, m4dSparkRendererOptions,
 } from '../../adapters/spark_adapter.mjs';
+import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
+import { DecoderFrameSource } from '../../js/splat_frame.mjs';
 import { M4dWorkerDecoder } from '../../js/worker_decoder.mjs';
 
 const params = new URLSearchParams(location.search);
@@ -26,8 +31,23 @@ const height = Number(params.get('height')) || 540;
 const canvas = $('view');
 
 const moduleUrl = new URL(params.get('module') || '../../../build/web/module/', location.href);
-const decoder = new M4dWorkerDecoder({ moduleUrl: new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href });
-await decoder.open();
+const m4dUrl = new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href;
+const streamUrl = new URL(params.get('stream') || '../../../out/default.m4d', location.href).href;
+// The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
+let decoder, streamer = null;
+try {
+  if (params.get('gops') === '1') {
+    const { loadM4d } = await import(m4dUrl);
+    streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
+    decoder = new DecoderFrameSource(streamer);
+  } else {
+    decoder = new M4dWorkerDecoder({ moduleUrl: m4dUrl });
+    await decoder.open();
+  }
+} catch (error) {
+  $('error').textContent = String(error.message || error);
+  throw error;
+}
 const core = new PlayerCore(decoder);
 
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
@@ -135,7 +155,7 @@ function tick(now) {
   if (state.frame) {
     $('frame').textContent = `frame ${state.frame.index}${state.frame.isKeyframe ? ' (key)' : ''}`;
     const s = adapter.stats;
-    $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (worker)   update ${state.updateMs.toFixed(1)} ms   ` +
+    $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
       `draw ${state.drawMs.toFixed(1)} ms   ${s.staticCount} static + ${s.dynamicCount} dynamic splats   ` +
       `static uploads ${s.staticUploads}   dropped ${core.stats.dropped}`;
   }
@@ -151,7 +171,7 @@ $('play').onclick = () => {
 
 // For tests and benchmarks.
 window.m4dSpark = {
-  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, core, state,
+  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, core, streamer, state,
   // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
   // worker decoder), lets Spark finish generating and sorting for the current camera, draws
   // (unless `settle` is false: then the page's loop draws it when Spark is ready); resolves
@@ -211,7 +231,7 @@ async function loadCameras(url) {
   if (params.get('camera') !== null && state.cameras[n]) state.camera = n;
 }
 
-const loading = [streamInto(params.get('stream') || '../../../out/default.m4d')];
+const loading = [streamer ? Promise.resolve() : streamInto(streamUrl)];
 if (params.get('cameras')) loading.push(loadCameras(params.get('cameras')));
 window.m4dSpark.loaded = Promise.all(loading)
   .then(() => { state.ended = true; })
