@@ -26,34 +26,8 @@ export interface PlayCanvasModule {
   [member: string]: unknown;
 }
 
-/** One layer's Gaussians as the viewers take them: owned copies of M4dLayerView's arrays. */
-export interface SplatLayer {
-  count: number;
-  shDegree: number;
-  /** (shDegree + 1)^2 per colour channel. */
-  shCoefficients: number;
-  /** 3 per Gaussian. */
-  positions: Float32Array;
-  /** 3 per Gaussian. */
-  logScales: Float32Array;
-  /** 4 per Gaussian: w, x, y, z (not normalised). */
-  rotations: Float32Array;
-  /** 1 per Gaussian. */
-  opacityLogits: Float32Array;
-  /** 3 * shCoefficients per Gaussian: [k][r, g, b]. */
-  sh: Float32Array;
-}
-
-/** A decoded frame for the adapters; `static` may be null when staticChanged is false. */
-export interface SplatFrame {
-  frameIndex: number;
-  isKeyframe: boolean;
-  layers: number;
-  concealedLayers: number;
-  staticChanged: boolean;
-  static: SplatLayer | null;
-  dynamic: SplatLayer;
-}
+import type { SplatFrame } from '../js/splat_frame.mjs';
+export type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
 
 /** What update() did so far. */
 export interface M4dPlayCanvasStats {
@@ -97,9 +71,3 @@ export interface M4dCaptureCamera {
 
 export declare function setCaptureCamera(pc: PlayCanvasModule, cameraEntity: PlayCanvasEntity, camera: M4dCaptureCamera,
   width?: number, height?: number): void;
-
-/** A SplatFrame copied from a main-thread decoder's frame (an M4dFrame of m4d.mjs). */
-export declare function splatFrameOf(frame: {
-  frameIndex: number; isKeyframe: boolean; layers: number; concealedLayers: number;
-  static: SplatLayer; dynamic: SplatLayer;
-}, staticChanged: boolean): SplatFrame;

@@ -1,6 +1,6 @@
-// The PlayCanvas engine adapter: shows decoded M4D frames (SplatFrame objects: the worker
-// decoder's output, or copies of the main-thread decoder's M4dLayerViews) as two gsplat
-// entities of a PlayCanvas app, one per layer, beside the app's other entities.
+// The PlayCanvas engine adapter: shows decoded M4D frames (SplatFrames of splat_frame.mjs: the
+// worker decoder's output, or SplatFrameMaker's copies of a main-thread decoder's frames) as
+// two gsplat entities of a PlayCanvas app, one per layer, beside the app's other entities.
 //
 // PlayCanvas 2.x builds a gsplat resource from PLY-style properties (GSplatData): x, y, z;
 // scale_0..2 as log scales; rot_0..3 as w, x, y, z; opacity as a logit; f_dc_0..2 and f_rest_*
@@ -248,22 +248,5 @@ export function setCaptureCamera(pc, cameraEntity, camera, width, height) {
     p[10] = -(far + near) / (far - near);
     p[11] = -1;
     p[14] = (-2 * far * near) / (far - near);
-  };
-}
-
-/**
- * A SplatFrame (owned copies) from a main-thread decoder's M4dFrame, with staticChanged as
- * given; for pages without the worker decoder.
- */
-export function splatFrameOf(frame, staticChanged) {
-  const copy = (v) => ({
-    count: v.count, shDegree: v.shDegree, shCoefficients: v.shCoefficients,
-    positions: v.positions.slice(), logScales: v.logScales.slice(), rotations: v.rotations.slice(),
-    opacityLogits: v.opacityLogits.slice(), sh: v.sh.slice(),
-  });
-  return {
-    frameIndex: frame.frameIndex, isKeyframe: frame.isKeyframe, layers: frame.layers,
-    concealedLayers: frame.concealedLayers, staticChanged,
-    static: staticChanged ? copy(frame.static) : null, dynamic: copy(frame.dynamic),
   };
 }

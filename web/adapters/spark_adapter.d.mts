@@ -1,30 +1,8 @@
 // Type declarations of spark_adapter.mjs, the M4D adapter for three.js with Spark. THREE and
 // Spark are passed in as modules; their types are left open here (no dependency on them).
 
-/** One layer's Gaussians as coded, owned copies (the fields of M4dLayerView in m4d.d.mts). */
-export interface SplatLayer {
-  count: number;
-  shDegree: number;
-  shCoefficients: number;
-  positions: Float32Array;
-  logScales: Float32Array;
-  /** w, x, y, z; not normalised. */
-  rotations: Float32Array;
-  opacityLogits: Float32Array;
-  /** [k][r, g, b] per Gaussian. */
-  sh: Float32Array;
-}
-
-/** A decoded frame for viewers; `static` may be null when staticChanged is false. */
-export interface SplatFrame {
-  frameIndex: number;
-  isKeyframe: boolean;
-  layers: number;
-  concealedLayers: number;
-  staticChanged: boolean;
-  static: SplatLayer | null;
-  dynamic: SplatLayer | null;
-}
+import type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
+export type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
 
 /** A capture camera: OpenCV axes, pixels; world to camera. */
 export interface CaptureCamera {
@@ -86,5 +64,3 @@ export declare function m4dSparkRendererOptions(): {
 export declare function applyCaptureCamera(THREE: any, camera: any, capture: CaptureCamera, width: number, height: number, worldMatrix?: any): void;
 export declare function camerasOfTransforms(json: unknown): Required<Pick<CaptureCamera, 'fx' | 'fy' | 'cx' | 'cy' | 'rotation' | 'translation' | 'width' | 'height' | 'name'>>[];
 export declare function fitCaptureCamera<T extends CaptureCamera & { width: number; height: number }>(camera: T, width: number, height: number): T;
-/** `frame`: an M4dFrame of m4d.mjs; `state`: kept between calls. */
-export declare function splatFrameOfM4dFrame(frame: any, state?: { static?: SplatLayer }): SplatFrame;

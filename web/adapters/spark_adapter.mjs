@@ -7,7 +7,9 @@
 // the first frame, a keyframe that replaces it, a seek); the dynamic layer every frame, packed
 // in place into the same PackedSplats buffer (and the same GPU texture) while its count fits.
 //
-// THREE and Spark are passed in (no import here), so a page chooses how to load them.
+// THREE and Spark are passed in (no import here), so a page chooses how to load them. Frames
+// come from the worker decoder (M4dWorkerDecoder, through PlayerCore), or from a main-thread
+// decoder through SplatFrameMaker (../js/splat_frame.mjs), which sets staticChanged.
 //
 // Coordinates: an M4D stream's world is its capture's (OpenCV cameras: x right, y down,
 // z forward). The splats keep those coordinates inside `adapter.root` (a THREE.Group under
@@ -15,7 +17,7 @@
 // applyCaptureCamera() places a THREE.PerspectiveCamera to look through a capture camera
 // (fx, fy, cx, cy in pixels; R, t world to camera), whatever the root's placement.
 
-const SH_C0 = 0.28209479177387814;
+import { SH_C0 } from '../js/splat_frame.mjs';
 
 /** The quaternion [w, x, y, z] normalised, the identity when it is zero or not finite. */
 function unitQuaternion(w, x, y, z, out) {
@@ -374,36 +376,5 @@ export function fitCaptureCamera(c, width, height) {
     cx: c.cx * scale + 0.5 * (width - c.width * scale),
     cy: c.cy * scale + 0.5 * (height - c.height * scale),
     width, height,
-  };
-}
-
-/**
- * A SplatFrame made on the main thread from an M4dFrame of m4d.mjs's decoder (owned copies of
- * its views). `state` (an object kept between calls) holds the last static layer sent:
- * staticChanged is true when this frame's static layer differs from it (first frame, a
- * keyframe or static update that replaces it, a seek to another random-access period). Until
- * the worker decoder exists this is how a page feeds the adapter.
- */
-export function splatFrameOfM4dFrame(frame, state = {}) {
-  const copy = (v) => ({
-    count: v.count, shDegree: v.shDegree, shCoefficients: v.shCoefficients,
-    positions: v.positions.slice(), logScales: v.logScales.slice(), rotations: v.rotations.slice(),
-    opacityLogits: v.opacityLogits.slice(), sh: v.sh.slice(),
-  });
-  const same = (a, b) => {
-    if (!a || a.count !== b.count || a.shCoefficients !== b.shCoefficients) return false;
-    for (const key of ['positions', 'logScales', 'rotations', 'opacityLogits', 'sh']) {
-      const x = a[key], y = b[key];
-      if (x.length !== y.length) return false;
-      for (let i = 0; i < x.length; ++i) if (x[i] !== y[i] && !(x[i] !== x[i] && y[i] !== y[i])) return false;
-    }
-    return true;
-  };
-  const staticChanged = !same(state.static, frame.static);
-  if (staticChanged) state.static = copy(frame.static);
-  return {
-    frameIndex: frame.frameIndex, isKeyframe: frame.isKeyframe, layers: frame.layers,
-    concealedLayers: frame.concealedLayers, staticChanged,
-    static: staticChanged ? state.static : null, dynamic: copy(frame.dynamic),
   };
 }

@@ -7,8 +7,9 @@
 //   node web/bench/adapter_frame_cost.mjs [STREAM] [--width 640] [--height 480] [--frames N]
 //                                         [--rows spark,player] [--screenshot-spark PNG]
 //
-// Columns (ms per frame): decode (m4d.mjs on the main thread; with copy: the SplatFrame's
-// owned copies, which the worker decoder will make), update (the adapter's update(): packing
+// Columns (ms per frame): decode (for Spark: in the worker, M4dWorkerDecoder.lastDecodeMs,
+// off the main thread; for the player: m4d.mjs on the main thread), copy (Spark: the rest of
+// the worker round trip: the SplatFrame's copies, the message and its transfer), update (the adapter's update(): packing
 // and marking buffers for upload; the player's upload), engine (the engine's own per-frame
 // work before drawing: Spark generates its splat textures on the GPU, reads depths back and
 // sorts in a worker), draw (render() then gl.finish(), so the GPU work is counted).
@@ -45,16 +46,20 @@ async function measureSpark(frames) {
       await s.sparkRenderer.driveSort();
     }
   };
-  s.decoder.seek(s.state.firstIndex);
+  // A worker decoder of its own (the page's feeds its PlayerCore), over the page's stream.
+  const { M4dWorkerDecoder } = await import('/web/js/worker_decoder.mjs');
+  const decoder = new M4dWorkerDecoder({ moduleUrl: '/build/web/module/m4d.mjs' });
+  await decoder.open();
+  const stream = new URLSearchParams(location.search).get('stream');
+  await decoder.push(new Uint8Array(await (await fetch(stream)).arrayBuffer()), { transfer: true });
+  await decoder.end();
   await s.settle();
   for (let f = 0; f < frames; ++f) {
     let t = performance.now();
-    const frame = s.decoder.nextFrame();
-    if (!frame) break;
-    const decode = performance.now() - t;
-    t = performance.now();
-    const splatFrame = s.splatFrameOf(frame);
-    const copy = performance.now() - t;
+    const splatFrame = await decoder.nextFrame();
+    if (!splatFrame) break;
+    const decode = decoder.lastDecodeMs;
+    const copy = performance.now() - t - decode;
     t = performance.now();
     s.adapter.update(splatFrame);
     const update = performance.now() - t;
@@ -70,6 +75,7 @@ async function measureSpark(frames) {
     times.push({ decode, copy, update, engine, draw, splats: splatFrame.dynamic.count + s.adapter.stats.staticCount,
       staticUpload: splatFrame.staticChanged });
   }
+  decoder.close();
   return times;
 }
 

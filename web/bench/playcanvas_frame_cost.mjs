@@ -51,8 +51,8 @@ try {
   await page.waitForFunction(() => window.m4dPlayCanvas && window.m4dPlayCanvas.state.frame, { timeout: 60000 });
   await page.evaluate(() => window.m4dPlayCanvas.loaded);
   const rows = await page.evaluate(async (limit) => {
-    const { app, adapter, decoder, camera } = window.m4dPlayCanvas;
-    const { splatFrameOf } = await import('/web/adapters/playcanvas_adapter.mjs');
+    const { app, adapter, camera } = window.m4dPlayCanvas;
+    const { SplatFrameMaker } = await import('/web/js/splat_frame.mjs');
     const { loadM4d } = await import('/build/web/module/m4d.mjs');
     const gl = app.graphicsDevice.gl;
     // The SDK renderer on a canvas of the same size, looking through the same camera.
@@ -65,7 +65,14 @@ try {
     const renderer = m4d.openRenderer(own);
     const ownGl = own.getContext('webgl2');
     const sdkDecoder = m4d.openDecoder();
-    sdkDecoder.push(decoder.pushedBytes ? decoder.pushedBytes() : new Uint8Array(await (await fetch(new URLSearchParams(location.search).get('stream'))).arrayBuffer()));
+    // The page decodes in a worker for its PlayerCore; here two main-thread decoders of the
+    // same bytes: one feeds the adapter (through SplatFrameMaker), one the SDK renderer.
+    const bytes = new Uint8Array(await (await fetch(new URLSearchParams(location.search).get('stream'))).arrayBuffer());
+    const decoder = m4d.openDecoder();
+    decoder.push(bytes);
+    decoder.end();
+    const maker = new SplatFrameMaker();
+    sdkDecoder.push(bytes);
     sdkDecoder.end();
     // The camera as the SDK takes it (world to camera, OpenCV axes) from the PlayCanvas entity.
     const w = camera.getWorldTransform().data, pos = camera.getPosition();
@@ -94,10 +101,9 @@ try {
       context.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
       return performance.now() - t0;
     };
-    decoder.seek(0);
     const rows = [];
-    for (let f, first = true; (f = decoder.nextFrame()) && (!limit || rows.length < limit); first = false) {
-      const frame = splatFrameOf(f, first || f.isKeyframe);
+    for (let f; (f = decoder.nextFrame()) && (!limit || rows.length < limit);) {
+      const frame = maker.make(f);
       const before = { ...bench.stats };
       const update = bench.update(frame);
       const uploadDraw = time(() => app.render());

@@ -5,6 +5,6 @@ export { errorCodeName, loadM4d } from './m4d.mjs';
 export { M4dWorkerDecoder } from './worker_decoder.mjs';
 export { PlayerCore } from './player_core.mjs';
 export {
-  SH_C0, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
+  DecoderFrameSource, SH_C0, SplatFrameMaker, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
   splatFrameFromDecoder, transferablesOf,
 } from './splat_frame.mjs';

@@ -11,13 +11,12 @@
 //            'next' result: { frame: SplatFrame | null, ended, info, errors, decodeMs }
 //
 // Requests are handled one at a time, in the order they arrive.
-import { copySplatLayer, layersEqual, splatFrameFromDecoder, transferablesOf } from './splat_frame.mjs';
+import { SplatFrameMaker, transferablesOf } from './splat_frame.mjs';
 
 let m4d = null;
 let decoder = null;
 let ended = false;
-let lastStatic = null;    // an owned copy of the static layer last sent, to compare with
-let staticStale = true;   // the next frame sends its static layer whatever it is
+let frames = new SplatFrameMaker();  // sets staticChanged from the static layer last sent
 
 async function open(message) {
   if (decoder) throw new Error('m4d worker: already open');
@@ -47,13 +46,7 @@ function next() {
   if (!frame) {
     return { result: { frame: null, ended, info: d.streamInfo(), errors: d.errors, decodeMs: performance.now() - start } };
   }
-  // The static set changes only at keyframes (bitstream-spec 6.2); compare there.
-  const staticChanged = staticStale || (frame.isKeyframe && !layersEqual(frame.static, lastStatic));
-  const splat = splatFrameFromDecoder(frame, { staticChanged });
-  if (staticChanged) {
-    lastStatic = copySplatLayer(frame.static);
-    staticStale = false;
-  }
+  const splat = frames.make(frame);
   const decodeMs = performance.now() - start;
   return {
     result: { frame: splat, ended, info: d.streamInfo(), errors: d.errors, decodeMs },
@@ -77,7 +70,7 @@ async function handle(message) {
     case 'seek': {
       if (!Number.isInteger(message.frame) || message.frame < 0) throw new RangeError(`m4d worker: bad frame ${message.frame}`);
       const done = live().seek(message.frame);
-      if (done) staticStale = true;
+      if (done) frames.reset();
       return { result: done };
     }
     case 'next':
@@ -85,7 +78,7 @@ async function handle(message) {
     case 'close':
       decoder?.close();
       decoder = null;
-      lastStatic = null;
+      frames = new SplatFrameMaker();
       return { result: null };
     default:
       throw new Error(`m4d worker: unknown request ${message.type}`);

@@ -36,6 +36,8 @@ export declare class PlayerCore<F extends { frameIndex: number } = SplatFrame> {
   readonly ended: boolean;
   play(): void;
   pause(): void;
+  /** Paused: the next tick shows the next frame. */
+  step(): void;
   seek(frame: number): Promise<boolean>;
   tick(nowMs: number): F | null;
 }

@@ -76,6 +76,11 @@ export class PlayerCore {
     this.origin = null;
   }
 
+  // Paused: the next tick shows the next frame (one step forward, no seek); playing: nothing.
+  step() {
+    if (!this.playing) this.needsFrame = true;
+  }
+
   // Goes to `frame` (the source restarts at its random-access point); the next tick shows it,
   // playing or paused. Resolves false (nothing changed) when the source does not have it yet.
   seek(frame) {

@@ -43,6 +43,83 @@ export function splatFrameFromDecoder(frame, options = {}) {
   };
 }
 
+// Makes SplatFrames from a main-thread decoder's frames (M4dDecoder.nextFrame) and sets
+// staticChanged itself: true on the first frame, on the first frame after reset() (call it
+// after a seek), and at a keyframe whose static layer differs from the one last sent (a
+// random-access keyframe or a STATIC_UPDATE; the static set changes only at keyframes,
+// bitstream-spec 6.2). The worker decoder (m4d_worker.mjs) uses it too.
+export class SplatFrameMaker {
+  constructor() {
+    /** An owned copy of the static layer last sent, or null. */
+    this.lastStatic = null;
+    this.stale = true;
+  }
+
+  // The next frame sends its static layer whatever it is (after a seek, a new stream).
+  reset() {
+    this.stale = true;
+  }
+
+  // The SplatFrame of an M4dFrame (the decoder's views are copied; `frame` may be reused after).
+  make(frame) {
+    const staticChanged = this.stale || (frame.isKeyframe && !layersEqual(frame.static, this.lastStatic));
+    const splat = splatFrameFromDecoder(frame, { staticChanged });
+    if (staticChanged) {
+      // The frame's own copy goes out (and may be transferred): keep another to compare with.
+      this.lastStatic = copySplatLayer(splat.static);
+      this.stale = false;
+    }
+    return splat;
+  }
+}
+
+// A frame source for PlayerCore (player_core.mjs) over a main-thread producer of M4dFrames
+// whose nextFrame() returns one (or a promise of one) and seek(frame) moves it: an M4dDecoder
+// given every byte (end() called), or a GopStreamer (gop_streamer.mjs) fetching GOPs as it
+// plays. Frames come out as SplatFrames (SplatFrameMaker); null from the producer means the end.
+export class DecoderFrameSource {
+  constructor(producer) {
+    if (!producer || typeof producer.nextFrame !== 'function' || typeof producer.seek !== 'function') {
+      throw new TypeError('DecoderFrameSource: the producer needs nextFrame() and seek()');
+    }
+    this.producer = producer;
+    this.maker = new SplatFrameMaker();
+    /** True once the producer returned no frame. */
+    this.ended = false;
+    /** Milliseconds the last nextFrame() took (decoding, and for a streamer waiting for bytes). */
+    this.lastDecodeMs = 0;
+  }
+
+  // The next frame as a SplatFrame, or null at the end.
+  async nextFrame() {
+    const start = performance.now();
+    const frame = await this.producer.nextFrame();
+    this.lastDecodeMs = performance.now() - start;
+    if (!frame) {
+      this.ended = true;
+      return null;
+    }
+    return this.maker.make(frame);
+  }
+
+  // Moves the producer to `frame`; its next SplatFrame carries the static layer. Resolves
+  // false when the producer refused (returned false).
+  async seek(frame) {
+    const done = this.producer.seek(frame) !== false;
+    if (done) {
+      this.maker.reset();
+      this.ended = false;
+    }
+    return done;
+  }
+
+  // The stream's M4dStreamInfo (the producer's decoder's), or null before its header.
+  streamInfo() {
+    const decoder = typeof this.producer.streamInfo === 'function' ? this.producer : this.producer.decoder;
+    return decoder && typeof decoder.streamInfo === 'function' ? decoder.streamInfo() : null;
+  }
+}
+
 // The distinct ArrayBuffers of a SplatFrame's layers, for postMessage's transfer list.
 export function transferablesOf(splatFrame) {
   const buffers = new Set();

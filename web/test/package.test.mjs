@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
@@ -24,7 +24,8 @@ test('pack_web.sh packs a package whose exports resolve to files in the tarball'
     assert.equal(pkg.name, 'm4d-player');
     assert.equal(pkg.version, `${part('MAJOR')}.${part('MINOR')}.${part('PATCH')}`);
     assert.equal(pkg.type, 'module');
-    for (const entry of ['.', './decoder', './worker', './worker-script', './wasm', './player-core', './splat-frame']) {
+    for (const entry of ['.', './decoder', './worker', './worker-script', './wasm', './player-core', './splat-frame',
+      './spark', './playcanvas', './gop-streamer']) {
       assert.ok(pkg.exports[entry], `export ${entry}`);
     }
     for (const [entry, target] of Object.entries(pkg.exports)) {
@@ -37,6 +38,22 @@ test('pack_web.sh packs a package whose exports resolve to files in the tarball'
     // The packed modules work: decode the first frame of a stream through the package's entry.
     execFileSync('tar', ['-xzf', tarball, '-C', dir]);
     assert.ok(existsSync(join(dir, 'package/js/m4d_worker.mjs')));
+    // Every relative import of a packed module names a packed file (the adapters take
+    // SplatFrames from ../js/splat_frame.mjs); the adapters and the streamer load in Node.js.
+    for (const file of [...files].filter((f) => f.endsWith('.mjs'))) {
+      const text = readFileSync(join(dir, file), 'utf8');
+      for (const [, target] of text.matchAll(/(?:from|import\()\s*'(\.\.?\/[^']+)'/g)) {
+        assert.ok(files.has(join(dirname(file), target)), `${file} imports ${target}, not in the tarball`);
+      }
+    }
+    const spark = await import(pathToFileURL(join(dir, 'package', pkg.exports['./spark'].default)).href);
+    const playcanvas = await import(pathToFileURL(join(dir, 'package', pkg.exports['./playcanvas'].default)).href);
+    const streamer = await import(pathToFileURL(join(dir, 'package', pkg.exports['./gop-streamer'].default)).href);
+    assert.equal(typeof spark.M4dSparkAdapter, 'function');
+    assert.equal(typeof playcanvas.M4dPlayCanvasAdapter, 'function');
+    assert.equal(typeof streamer.GopStreamer, 'function');
+    assert.equal(spark.splatFrameOfM4dFrame, undefined, 'SplatFrames are made by splat_frame.mjs only');
+    assert.equal(playcanvas.splatFrameOf, undefined, 'SplatFrames are made by splat_frame.mjs only');
     const m4dPlayer = await import(pathToFileURL(join(dir, 'package/js/index.mjs')).href);
     const m4d = await m4dPlayer.loadM4d();
     assert.equal(m4d.version(), pkg.version);
@@ -58,6 +75,8 @@ test('every export and member the package\'s TypeScript declarations declare exi
   const instances = {
     M4dWorkerDecoder: (api) => new api.M4dWorkerDecoder(),
     PlayerCore: (api) => new api.PlayerCore({ nextFrame: async () => null, seek: async () => false }),
+    SplatFrameMaker: (api) => new api.SplatFrameMaker(),
+    DecoderFrameSource: (api) => new api.DecoderFrameSource({ nextFrame: () => null, seek: () => true }),
   };
   let checked = 0;
   for (const name of ['splat_frame', 'worker_decoder', 'player_core']) {

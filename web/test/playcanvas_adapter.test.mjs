@@ -5,7 +5,7 @@
 // frames. Needs scripts/build.sh (m4d, m4d_play) and scripts/build_web.sh.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
@@ -131,9 +131,9 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
         message(() => adapter.update({ staticChanged: false, static: null, dynamic: { count: 2, shDegree: 0,
           shCoefficients: 1, positions: new Float32Array(3), logScales: new Float32Array(6), rotations: new Float32Array(8),
           opacityLogits: new Float32Array(2), sh: new Float32Array(6) } }))];
-    assert.match(errors[3], /dynamic layer: positions must be a Float32Array of 6 values/);
     });
     for (const e of errors) assert.match(e, /^TypeError: M4dPlayCanvasAdapter/);
+    assert.match(errors[3], /dynamic layer: positions must be a Float32Array of 6 values/);
     // destroy() takes both entities out of the scene.
     const left = await page.evaluate(() => {
       const { adapter, app } = window.m4dPlayCanvas;
@@ -146,5 +146,67 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
   } finally {
     files.close();
     rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// The page decodes in a Web Worker (M4dWorkerDecoder) paced by PlayerCore: it shows frames in
+// order (dropping some if decoding fell behind) and loops; the main thread loads no wasm.
+test('plays through the worker decoder at the stream fps, looping at the end', async () => {
+  const page = await openExample('stream=/conformance/streams/enc_adaptive_gop.m4d&width=96&height=72');
+  try {
+    await page.waitForFunction(() => {
+      const h = window.m4dPlayCanvas.state.history;
+      return h.some((f, i) => i > 0 && f < h[i - 1]) && h.at(-1) >= 2;
+    }, { timeout: 15000 });
+    const seen = await page.evaluate(() => {
+      const { decoder, core, state } = window.m4dPlayCanvas;
+      return {
+        worker: decoder.constructor.name, fps: decoder.streamInfo().fps, playing: core.playing,
+        stats: { ...core.stats }, history: state.history.slice(),
+        wasmOnPage: performance.getEntriesByType('resource').filter((e) => /m4d_wasm|m4d\.mjs/.test(e.name)).map((e) => e.name),
+      };
+    });
+    assert.equal(seen.worker, 'M4dWorkerDecoder');
+    assert.equal(seen.fps, 30);
+    assert.equal(seen.playing, true);
+    assert.deepEqual(seen.wasmOnPage, [], 'the decoder is loaded by the worker only');
+    const h = seen.history;
+    assert.ok(h.every((f) => Number.isInteger(f) && f >= 0 && f < 6), h.join(' '));
+    for (let i = 1; i < h.length; ++i) {
+      assert.ok(h[i] > h[i - 1] || h[i] === 0, `frame ${h[i]} after ${h[i - 1]}: ${h.join(' ')}`);
+    }
+    assert.ok(seen.stats.shown >= h.length);
+  } finally {
+    await page.close();
+  }
+});
+
+// gops=1: frames come through a GopStreamer (range requests by GOP) instead of the worker.
+test('gops=1 plays by GOP with range requests only', async () => {
+  const gopDir = mkdtempSync(join(tmpdir(), 'm4d-playcanvas-gops-'));
+  const served = [];
+  let gopServer;
+  try {
+    copyFileSync(join(root, 'conformance/streams/enc_adaptive_gop.m4d'), join(gopDir, 's.m4d'));
+    execFileSync(join(root, 'build/release/tools/m4d_probe'), ['--gop-index', join(gopDir, 's.m4d'), '-o', join(gopDir, 's.m4d.gops.json')]);
+    gopServer = await serve(gopDir, 0, { onRequest: (r) => served.push(r) });
+    const url = `http://127.0.0.1:${gopServer.address().port}/s.m4d`;
+    const page = await openExample(`stream=${encodeURIComponent(url)}&gops=1&width=96&height=72&autoplay=0`);
+    try {
+      assert.equal(await page.evaluate(() => window.m4dPlayCanvas.showFrame(3)), 3);
+      const seen = await page.evaluate(() => ({
+        source: window.m4dPlayCanvas.decoder.constructor.name, gops: window.m4dPlayCanvas.streamer.requests.map((r) => r.gop),
+      }));
+      assert.equal(seen.source, 'DecoderFrameSource');
+      const ranges = served.filter((r) => r.path === '/s.m4d');
+      assert.ok(ranges.length === seen.gops.length && ranges.every((r) => r.status === 206), JSON.stringify(ranges));
+      assert.equal(new Set(seen.gops).size, seen.gops.length);
+      assert.deepEqual(page.problems, []);
+    } finally {
+      await page.close();
+    }
+  } finally {
+    gopServer?.close();
+    rmSync(gopDir, { recursive: true, force: true });
   }
 });

@@ -109,6 +109,23 @@ test('shows the first frame while paused, then holds until play; resumes where i
   assert.equal(core.stats.dropped, 0);
 });
 
+test('step() shows the next frame while paused, once, without a seek', async () => {
+  const source = new FakeSource(10);
+  const core = new PlayerCore(source);
+  await flush();
+  assert.equal(index(core.tick(0)), 0);
+  core.step();
+  assert.equal(index(core.tick(10)), 1);
+  assert.equal(index(core.tick(5000)), null);  // one step only
+  await flush();
+  core.step();
+  const third = core.tick(5001);
+  assert.equal(index(third), 2);
+  assert.equal(third.staticChanged, false);
+  assert.deepEqual(source.seeks, []);
+  assert.equal(core.stats.dropped, 0);
+});
+
 test('seeks, playing or paused, and the frame sought brings its static layer', async () => {
   const source = new FakeSource(12, { available: 10 });
   const core = new PlayerCore(source);

@@ -5,7 +5,7 @@
 // native renderer's (m4d_play). Needs scripts/build.sh and scripts/build_web.sh.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
@@ -153,5 +153,80 @@ test('draws capture camera 1 close to the native renderer', async (t) => {
     }
   } finally {
     await page.close();
+  }
+});
+
+// The page decodes in a Web Worker (M4dWorkerDecoder) paced by PlayerCore: it shows frames in
+// order (dropping some if decoding fell behind) and loops; the main thread loads no wasm.
+test('plays through the worker decoder at the stream fps, looping at the end', async () => {
+  const page = await openExample(`stream=/${stream}&width=96&height=72`);
+  try {
+    await page.waitForFunction(() => {
+      const h = window.m4dSpark.state.history;
+      return h.some((f, i) => i > 0 && f < h[i - 1]) && h.at(-1) >= 2;
+    }, { timeout: 15000 });
+    const seen = await page.evaluate(() => {
+      const { decoder, core, state } = window.m4dSpark;
+      return {
+        worker: decoder.constructor.name, fps: decoder.streamInfo().fps, playing: core.playing,
+        stats: { ...core.stats }, history: state.history.slice(),
+        wasmOnPage: performance.getEntriesByType('resource').filter((e) => /m4d_wasm|m4d\.mjs/.test(e.name)).map((e) => e.name),
+      };
+    });
+    assert.equal(seen.worker, 'M4dWorkerDecoder');
+    assert.equal(seen.fps, 30);
+    assert.equal(seen.playing, true);
+    assert.deepEqual(seen.wasmOnPage, [], 'the decoder is loaded by the worker only');
+    const h = seen.history;
+    assert.ok(h.every((f) => Number.isInteger(f) && f >= 0 && f < 6), h.join(' '));
+    for (let i = 1; i < h.length; ++i) {
+      assert.ok(h[i] > h[i - 1] || h[i] === 0, `frame ${h[i]} after ${h[i - 1]}: ${h.join(' ')}`);
+    }
+    assert.ok(seen.stats.shown >= h.length);
+  } finally {
+    await page.close();
+  }
+});
+
+// gops=1: a GopStreamer (HTTP range requests by GOP, from the sidecar index m4d_probe writes)
+// feeds PlayerCore on the main thread; every byte of the stream comes in a range request of
+// one GOP, none twice, and seeking back and forth shows the frames asked for.
+test('gops=1 plays by GOP with range requests, fetching no GOP twice', async () => {
+  const gopDir = mkdtempSync(join(tmpdir(), 'm4d-spark-gops-'));
+  const served = [];
+  let gopServer;
+  try {
+    copyFileSync(join(root, stream), join(gopDir, 's.m4d'));
+    execFileSync(join(root, 'build/release/tools/m4d_probe'), ['--gop-index', join(gopDir, 's.m4d'), '-o', join(gopDir, 's.m4d.gops.json')]);
+    const index = JSON.parse(readFileSync(join(gopDir, 's.m4d.gops.json'), 'utf8'));
+    gopServer = await serve(gopDir, 0, { onRequest: (r) => served.push(r) });
+    const url = `http://127.0.0.1:${gopServer.address().port}/s.m4d`;
+    const page = await openExample(`stream=${encodeURIComponent(url)}&gops=1&width=96&height=72&autoplay=0`);
+    try {
+      const shown = [];
+      for (const f of [0, 1, 5, 2]) shown.push(await page.evaluate((i) => window.m4dSpark.showFrame(i, false), f));
+      assert.deepEqual(shown, [0, 1, 5, 2]);
+      const seen = await page.evaluate(() => ({
+        requests: window.m4dSpark.streamer.requests.map((r) => ({ ...r })),
+        source: window.m4dSpark.decoder.constructor.name,
+        statics: window.m4dSpark.adapter.stats.staticCount,
+      }));
+      assert.equal(seen.source, 'DecoderFrameSource');
+      assert.equal(seen.statics, 987, 'frame 2 shows its static layer');
+      const ranges = served.filter((r) => r.path === '/s.m4d');
+      assert.ok(ranges.length >= 1 && ranges.every((r) => r.status === 206), JSON.stringify(ranges));
+      assert.deepEqual(ranges.map((r) => r.range), seen.requests.map((r) => [r.start, r.end]));
+      const gops = seen.requests.map((r) => r.gop);
+      assert.equal(new Set(gops).size, gops.length, `GOPs requested: ${gops.join(' ')}`);
+      for (const r of seen.requests) {
+        const g = index.gops[r.gop];
+        assert.deepEqual([r.start, r.end], [g.offset, g.offset + g.bytes - 1]);
+      }
+    } finally {
+      await page.close();
+    }
+  } finally {
+    gopServer?.close();
+    rmSync(gopDir, { recursive: true, force: true });
   }
 });

@@ -5,8 +5,9 @@ import { readFileSync } from 'node:fs';
 import { test } from 'node:test';
 import {
   SH_C0, copySplatLayer, layersEqual, linearScales, normalisedRotationsXyzw, opacities, rgbFromShDc,
-  splatFrameFromDecoder, transferablesOf,
+  DecoderFrameSource, SplatFrameMaker, splatFrameFromDecoder, transferablesOf,
 } from '../js/splat_frame.mjs';
+import { PlayerCore } from '../js/player_core.mjs';
 
 const root = new URL('../../', import.meta.url);
 const { loadM4d } = await import(new URL('build/web/module/m4d.mjs', root));
@@ -37,6 +38,60 @@ test('copies a decoded frame into owned arrays and lists their buffers', async (
   // The copy outlives the decoder.
   decoder.close();
   assert.ok(Number.isFinite(frame.dynamic.positions[0]));
+});
+
+test('SplatFrameMaker sends the static layer when it changes: first frame, static update, seek', async () => {
+  const m4d = await loadM4d();
+  const decoder = m4d.openDecoder();
+  decoder.push(readFileSync(new URL('conformance/streams/enc_adaptive_gop.m4d', root)));
+  decoder.end();
+  const maker = new SplatFrameMaker();
+  const made = [];
+  for (let f; (f = decoder.nextFrame());) made.push(maker.make(f));
+  // GOPs of 2; frames 2 and 4 are keyframes with a STATIC_UPDATE (843, 987, 1239 static Gaussians).
+  assert.deepEqual(made.map((f) => f.staticChanged), [true, false, true, false, true, false]);
+  assert.deepEqual(made.filter((f) => f.static).map((f) => f.static.count), [843, 987, 1239]);
+  assert.ok(layersEqual(maker.lastStatic, made[4].static));
+  assert.notEqual(maker.lastStatic.positions.buffer, made[4].static.positions.buffer);  // its own copy
+  // After a seek the next frame carries its static layer even when it did not change.
+  assert.equal(decoder.seek(5), true);
+  maker.reset();
+  const after = maker.make(decoder.nextFrame());
+  assert.equal(after.frameIndex, 5);
+  assert.equal(after.staticChanged, true);
+  assert.ok(layersEqual(after.static, made[4].static));
+  decoder.close();
+});
+
+test('DecoderFrameSource feeds PlayerCore from a main-thread decoder', async () => {
+  const m4d = await loadM4d();
+  const decoder = m4d.openDecoder();
+  decoder.push(readFileSync(new URL('conformance/streams/enc_adaptive_gop.m4d', root)));
+  decoder.end();
+  const source = new DecoderFrameSource(decoder);
+  const core = new PlayerCore(source, { maxQueue: 1 });
+  const flush = async () => { for (let i = 0; i < 10; ++i) await new Promise((done) => setImmediate(done)); };
+  const shown = [];
+  await flush();
+  shown.push(core.tick(0));
+  for (let f = 1; f < 6; ++f) {
+    core.step();
+    await flush();
+    shown.push(core.tick(f));
+  }
+  assert.deepEqual(shown.map((f) => f.frameIndex), [0, 1, 2, 3, 4, 5]);
+  assert.deepEqual(shown.map((f) => f.staticChanged), [true, false, true, false, true, false]);
+  assert.equal(source.streamInfo().fps, 30);
+  await flush();
+  assert.equal(core.ended, true);
+  assert.equal(await core.seek(3), true);
+  await flush();
+  const again = core.tick(100);
+  assert.equal(again.frameIndex, 3);
+  assert.equal(again.staticChanged, true);
+  assert.equal(again.static.count, 987);
+  assert.throws(() => new DecoderFrameSource({}), /needs nextFrame\(\) and seek\(\)/);
+  decoder.close();
 });
 
 test('converts to the layouts viewers take', () => {

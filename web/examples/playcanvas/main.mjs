@@ -1,5 +1,7 @@
 // An M4D stream played in a PlayCanvas app through the PlayCanvas adapter, next to an ordinary
-// entity (a lit box), decoded on the main thread by the WebAssembly decoder (loadM4d).
+// entity (a lit box). The stream is decoded in a Web Worker (M4dWorkerDecoder), whose
+// SplatFrames (the static layer only when it changes) PlayerCore paces at the stream's fps and
+// drops when decoding falls behind; the adapter shows them.
 //
 // Query parameters:
 //   stream=URL     the stream (default /out/default.m4d)
@@ -7,8 +9,15 @@
 //   cameras=URL    a capture's transforms.json (as `m4d scene` writes); camera=N looks through
 //                  capture camera N (scaled to the canvas's width and centred, as m4d_play does)
 //   width, height  drawing size; autoplay=0 starts paused; box=0 leaves the box out
+//   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
+//                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
+//                  instead of one fetch into the worker decoder
 import * as pc from 'playcanvas';
-import { M4dPlayCanvasAdapter, setCaptureCamera, splatFrameOf } from '../../adapters/playcanvas_adapter.mjs';
+import { M4dPlayCanvasAdapter, setCaptureCamera } from '../../adapters/playcanvas_adapter.mjs';
+import { GopStreamer } from '../../js/gop_streamer.mjs';
+import { PlayerCore } from '../../js/player_core.mjs';
+import { DecoderFrameSource } from '../../js/splat_frame.mjs';
+import { M4dWorkerDecoder } from '../../js/worker_decoder.mjs';
 
 const params = new URLSearchParams(location.search);
 const $ = (id) => document.getElementById(id);
@@ -17,9 +26,23 @@ canvas.width = Number(params.get('width')) || 960;
 canvas.height = Number(params.get('height')) || 540;
 
 const moduleUrl = new URL(params.get('module') || '/build/web/module/', location.href).href.replace(/\/?$/, '/');
-const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
-const m4d = await loadM4d();
-const decoder = m4d.openDecoder();
+const streamUrl = new URL(params.get('stream') || '/out/default.m4d', location.href).href;
+// The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
+let decoder, streamer = null;
+try {
+  if (params.get('gops') === '1') {
+    const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
+    streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
+    decoder = new DecoderFrameSource(streamer);
+  } else {
+    decoder = new M4dWorkerDecoder({ moduleUrl: new URL('m4d.mjs', moduleUrl).href });
+    await decoder.open();
+  }
+} catch (error) {
+  $('error').textContent = String(error.message || error);
+  throw error;
+}
+const core = new PlayerCore(decoder);
 
 // The app draws at the canvas's own size; the drawing buffer is kept for read-back.
 const device = await pc.createGraphicsDevice(canvas, {
@@ -46,8 +69,9 @@ app.scene.ambientLight = new pc.Color(0.35, 0.35, 0.35);
 app.start();
 
 const adapter = new M4dPlayCanvasAdapter(app, pc);
-const state = { playing: params.get('autoplay') !== '0', ended: false, frame: null, nextDue: 0,
-  staticPending: true, box: null, updateMs: 0, cameraSet: false };
+const state = { playing: params.get('autoplay') !== '0', ended: false, frame: null, shown: 0, history: [],
+  looping: false, box: null, updateMs: 0, cameraSet: false };
+if (state.playing) core.play();
 
 // A capture camera of transforms.json (camera-to-world, OpenGL axes) as world-to-camera in
 // OpenCV axes, scaled to the canvas's width and centred.
@@ -107,46 +131,43 @@ function addBox(centre) {
   state.box = box;
 }
 
-// Decodes the next frame (after a seek when `seekTo` is given) and hands it to the adapter.
-function advance(seekTo) {
-  if (seekTo !== undefined) {
-    if (!decoder.seek(seekTo)) return false;
-    state.staticPending = true;
+// Takes the frame PlayerCore says is due (if any) to the adapter; at the end, playing, loops.
+function advance(now) {
+  const frame = core.tick(now);
+  if (frame) show(frame);
+  if (core.error) $('error').textContent = String(core.error.message || core.error);
+  if (core.playing && core.ended && state.frame && !state.looping) {
+    state.looping = true;
+    core.seek(0).finally(() => { state.looping = false; });
   }
-  let frame = decoder.nextFrame();
-  if (!frame && state.ended && state.frame) {
-    decoder.seek(0);  // loop
-    state.staticPending = true;
-    frame = decoder.nextFrame();
-  }
-  if (!frame) return false;
-  // The main-thread decoder does not say when the static layer changes: at keyframes, or
-  // after a seek. (The worker decoder's SplatFrames carry staticChanged themselves.)
-  const splatFrame = splatFrameOf(frame, state.staticPending || frame.isKeyframe);
-  state.staticPending = false;
+  return frame !== null;
+}
+
+// Shows a SplatFrame (from the worker: the static layer only when it changed).
+function show(splatFrame) {
   if (!state.cameraSet) {
-    const orbit = orbitCamera(splatFrame.dynamic.count ? splatFrame.dynamic : splatFrame.static);
+    const orbit = orbitCamera(splatFrame.dynamic.count || !splatFrame.static ? splatFrame.dynamic : splatFrame.static);
     if (!params.get('cameras')) setCaptureCamera(pc, camera, orbit.camera, canvas.width, canvas.height);
     if (params.get('box') !== '0') addBox(orbit.centre);
     state.cameraSet = true;
   }
   state.updateMs = adapter.update(splatFrame);
-  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe };
-  $('frame').textContent = `frame ${frame.frameIndex}${frame.isKeyframe ? ' (key)' : ''}`;
-  return true;
+  state.frame = { index: splatFrame.frameIndex, isKeyframe: splatFrame.isKeyframe, staticChanged: splatFrame.staticChanged };
+  ++state.shown;
+  state.history.push(splatFrame.frameIndex);
+  if (state.history.length > 64) state.history.shift();
+  $('frame').textContent = `frame ${splatFrame.frameIndex}${splatFrame.isKeyframe ? ' (key)' : ''}`;
 }
 
 app.on('update', () => {
-  const info = decoder.streamInfo();
-  const period = 1000 / (info && info.fps > 0 ? info.fps : 30), now = performance.now();
-  if ((state.playing && now >= state.nextDue) || !state.frame) {
-    if (advance()) state.nextDue = Math.max(now, state.nextDue + period);
-  }
-  $('readout').textContent = `update ${state.updateMs.toFixed(1)} ms`;
+  advance(performance.now());
+  $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
+    `dropped ${core.stats.dropped}`;
 });
 $('play').textContent = state.playing ? 'Pause' : 'Play';
 $('play').onclick = () => {
   state.playing = !state.playing;
+  if (state.playing) core.play(); else core.pause();
   $('play').textContent = state.playing ? 'Pause' : 'Play';
 };
 
@@ -157,17 +178,27 @@ const nextFrame = () => new Promise(requestAnimationFrame);
 
 // For tests and embedding pages.
 window.m4dPlayCanvas = {
-  app, pc, adapter, state, decoder, camera,
-  // Pauses, shows frame `index` once its bytes have arrived (decoding from its random-access
-  // point, or on from the frame shown), and resolves after a sorted drawing of it.
+  app, pc, adapter, state, decoder, core, streamer, camera,
+  // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
+  // worker decoder, waiting for its bytes), and resolves after a sorted drawing of it.
   async showFrame(index) {
     state.playing = false;
-    if (!state.frame || index <= state.frame.index) {
-      while (!advance(index)) await nextFrame();
+    core.pause();
+    $('play').textContent = 'Play';
+    const shown = state.shown;
+    if (state.frame && state.frame.index + 1 === index) {
+      core.step();
+    } else {
+      while (!(await core.seek(index))) {
+        if (state.ended) throw new Error(`frame ${index}: not in the stream`);
+        await nextFrame();
+      }
     }
-    while (state.frame.index !== index) {
-      if (!advance()) await nextFrame();
+    while (state.shown === shown) {
+      if (core.error) throw core.error;
+      if (!advance(performance.now())) await new Promise((done) => setTimeout(done, 1));
     }
+    if (state.frame.index !== index) throw new Error(`frame ${index}: frame ${state.frame.index} came instead`);
     for (const seen = readyCount; readyCount < seen + 2;) await nextFrame();
     await nextFrame();
     return state.frame.index;
@@ -195,15 +226,19 @@ async function load() {
     setCaptureCamera(pc, camera, await captureCamera(params.get('cameras'), Number(params.get('camera') || 0)),
       canvas.width, canvas.height);
   }
-  const response = await fetch(params.get('stream') || '/out/default.m4d');
+  if (streamer) {
+    state.ended = true;  // the streamer fetches GOPs as frames are asked for
+    return;
+  }
+  const response = await fetch(streamUrl);
   if (!response.ok) throw new Error(`${response.url}: HTTP ${response.status}`);
   const reader = response.body.getReader();
   for (;;) {
     const { done, value } = await reader.read();
     if (done) break;
-    decoder.push(value);
+    await decoder.push(value, { transfer: true });
   }
-  decoder.end();
+  await decoder.end();
   state.ended = true;
 }
 window.m4dPlayCanvas.loaded = load().catch((e) => { state.ended = true; $('error').textContent = String(e.message || e); });

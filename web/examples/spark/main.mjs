@@ -1,6 +1,7 @@
 // Example: an M4D stream played in a three.js scene through Spark (M4dSparkAdapter), beside an
-// ordinary three.js mesh. The stream is decoded on the main thread with m4d.mjs (loadM4d);
-// each decoded frame becomes a SplatFrame (owned copies) that the adapter shows.
+// ordinary three.js mesh. The stream is decoded in a Web Worker (M4dWorkerDecoder), whose
+// SplatFrames (the static layer only when it changes) PlayerCore paces at the stream's fps and
+// drops when decoding falls behind; the adapter shows them.
 //
 // Query parameters:
 //   stream=URL     the stream (default ../../../out/default.m4d)
@@ -10,11 +11,18 @@
 //   width, height  drawing size (default 960x540); autoplay=0 starts paused
 //   mesh=0         leaves the three.js mesh out
 //   spark=default  Spark's own renderer settings (else m4dSparkRendererOptions(): as M4D's)
+//   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
+//                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
+//                  instead of one fetch into the worker decoder
 import * as THREE from 'three';
 import * as spark from '@sparkjsdev/spark';
 import {
-  M4dSparkAdapter, camerasOfTransforms, fitCaptureCamera, m4dSparkRendererOptions, splatFrameOfM4dFrame,
+  M4dSparkAdapter, camerasOfTransforms, fitCaptureCamera, m4dSparkRendererOptions,
 } from '../../adapters/spark_adapter.mjs';
+import { GopStreamer } from '../../js/gop_streamer.mjs';
+import { PlayerCore } from '../../js/player_core.mjs';
+import { DecoderFrameSource } from '../../js/splat_frame.mjs';
+import { M4dWorkerDecoder } from '../../js/worker_decoder.mjs';
 
 const params = new URLSearchParams(location.search);
 const $ = (id) => document.getElementById(id);
@@ -23,9 +31,24 @@ const height = Number(params.get('height')) || 540;
 const canvas = $('view');
 
 const moduleUrl = new URL(params.get('module') || '../../../build/web/module/', location.href);
-const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href);
-const m4d = await loadM4d();
-const decoder = m4d.openDecoder();
+const m4dUrl = new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href;
+const streamUrl = new URL(params.get('stream') || '../../../out/default.m4d', location.href).href;
+// The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
+let decoder, streamer = null;
+try {
+  if (params.get('gops') === '1') {
+    const { loadM4d } = await import(m4dUrl);
+    streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
+    decoder = new DecoderFrameSource(streamer);
+  } else {
+    decoder = new M4dWorkerDecoder({ moduleUrl: m4dUrl });
+    await decoder.open();
+  }
+} catch (error) {
+  $('error').textContent = String(error.message || error);
+  throw error;
+}
+const core = new PlayerCore(decoder);
 
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
 renderer.setPixelRatio(1);
@@ -44,9 +67,10 @@ scene.add(new THREE.AmbientLight(0xffffff, 0.6), new THREE.DirectionalLight(0xff
 if (params.get('mesh') !== '0') scene.add(box);
 
 const state = {
-  playing: params.get('autoplay') !== '0', ended: false, frame: null, firstIndex: null,
-  nextDue: 0, cameras: [], camera: null, orbit: null, splatState: {}, updateMs: 0, drawMs: 0,
+  playing: params.get('autoplay') !== '0', ended: false, frame: null, firstIndex: null, shown: 0, history: [],
+  looping: false, cameras: [], camera: null, orbit: null, updateMs: 0, drawMs: 0,
 };
+if (state.playing) core.play();
 
 async function streamInto(url) {
   const response = await fetch(url);
@@ -55,9 +79,9 @@ async function streamInto(url) {
   for (;;) {
     const { done, value } = await reader.read();
     if (done) break;
-    decoder.push(value);
+    await decoder.push(value, { transfer: true });
   }
-  decoder.end();
+  await decoder.end();
 }
 
 // The orbit: around the dynamic layer's mean, three times its spread away; the box beside it.
@@ -90,24 +114,27 @@ function placeCamera() {
   camera.updateMatrixWorld(true);
 }
 
-// Decodes the next frame (looping at the end) and hands it to the adapter.
-function advance() {
-  let frame = decoder.nextFrame();
-  if (!frame && state.ended && state.frame) {
-    decoder.seek(state.firstIndex);
-    frame = decoder.nextFrame();
+// Takes the frame PlayerCore says is due (if any) to the adapter; at the end, playing, loops.
+function advance(now) {
+  const frame = core.tick(now);
+  if (frame) show(frame);
+  if (core.error) $('error').textContent = String(core.error.message || core.error);
+  if (core.playing && core.ended && state.frame && !state.looping) {
+    state.looping = true;
+    core.seek(state.firstIndex).finally(() => { state.looping = false; });
   }
-  if (!frame) return false;
-  show(frame);
-  return true;
+  return frame !== null;
 }
 
+// Shows a SplatFrame (from the worker: the static layer only when it changed).
 function show(frame) {
-  const splatFrame = splatFrameOfM4dFrame(frame, state.splatState);
-  if (!state.orbit) setUpOrbit(frame.dynamic.count ? frame.dynamic : frame.static);
-  state.updateMs = adapter.update(splatFrame).ms;
-  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe, staticChanged: splatFrame.staticChanged };
+  if (!state.orbit) setUpOrbit(frame.dynamic.count || !frame.static ? frame.dynamic : frame.static);
+  state.updateMs = adapter.update(frame).ms;
+  state.frame = { index: frame.frameIndex, isKeyframe: frame.isKeyframe, staticChanged: frame.staticChanged };
   if (state.firstIndex === null) state.firstIndex = frame.frameIndex;
+  ++state.shown;
+  state.history.push(frame.frameIndex);
+  if (state.history.length > 64) state.history.shift();
 }
 
 function draw() {
@@ -118,10 +145,7 @@ function draw() {
 }
 
 function tick(now) {
-  const period = 1000 / (decoder.streamInfo()?.fps || 30);
-  if ((state.playing && now >= state.nextDue) || !state.frame) {
-    if (advance()) state.nextDue = Math.max(now, state.nextDue + period);
-  }
+  advance(now);
   if (state.orbit && state.camera === null && state.playing) state.orbit.yaw += 0.003;
   // Paused, a frame is drawn again only when Spark asks (a finished sort).
   if (state.playing || sparkRenderer.dirty || !state.drawn) {
@@ -131,8 +155,9 @@ function tick(now) {
   if (state.frame) {
     $('frame').textContent = `frame ${state.frame.index}${state.frame.isKeyframe ? ' (key)' : ''}`;
     const s = adapter.stats;
-    $('readout').textContent = `update ${state.updateMs.toFixed(1)} ms   draw ${state.drawMs.toFixed(1)} ms   ` +
-      `${s.staticCount} static + ${s.dynamicCount} dynamic splats   static uploads ${s.staticUploads}`;
+    $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
+      `draw ${state.drawMs.toFixed(1)} ms   ${s.staticCount} static + ${s.dynamicCount} dynamic splats   ` +
+      `static uploads ${s.staticUploads}   dropped ${core.stats.dropped}`;
   }
   requestAnimationFrame(tick);
 }
@@ -140,23 +165,29 @@ function tick(now) {
 $('play').textContent = state.playing ? 'Pause' : 'Play';
 $('play').onclick = () => {
   state.playing = !state.playing;
+  if (state.playing) core.play(); else core.pause();
   $('play').textContent = state.playing ? 'Pause' : 'Play';
 };
 
 // For tests and benchmarks.
 window.m4dSpark = {
-  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, state,
-  // Pauses, shows frame `index` (seeking when it is not the next one), lets Spark finish
-  // generating and sorting for the current camera, draws (unless `settle` is false: then
-  // the page's loop draws it when Spark is ready); resolves with the frame index.
+  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, core, streamer, state,
+  // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
+  // worker decoder), lets Spark finish generating and sorting for the current camera, draws
+  // (unless `settle` is false: then the page's loop draws it when Spark is ready); resolves
+  // with the frame index.
   async showFrame(index, settle = true) {
     state.playing = false;
-    if (!state.frame || ((state.frame.index + 1) >>> 0) !== index) {
-      if (!decoder.seek(index)) throw new Error(`frame ${index}: not available`);
+    core.pause();
+    $('play').textContent = 'Play';
+    const shown = state.shown;
+    if (state.frame && state.frame.index + 1 === index) core.step();
+    else if (!(await core.seek(index))) throw new Error(`frame ${index}: not available`);
+    while (state.shown === shown) {
+      if (core.error) throw core.error;
+      if (!advance(performance.now())) await new Promise((done) => setTimeout(done, 1));
     }
-    const frame = decoder.nextFrame();
-    if (!frame) throw new Error(`frame ${index}: not decoded (${decoder.errors.lastMessage})`);
-    show(frame);
+    if (state.frame.index !== index) throw new Error(`frame ${index}: frame ${state.frame.index} came instead`);
     if (settle) await this.settle();
     return state.frame.index;
   },
@@ -190,8 +221,6 @@ window.m4dSpark = {
     return rgb;
   },
   setMeshVisible(visible) { box.visible = visible; },
-  // The SplatFrame of a decoded frame, as show() makes it.
-  splatFrameOf: (frame) => splatFrameOfM4dFrame(frame, state.splatState),
   loaded: null,
 };
 
@@ -202,7 +231,7 @@ async function loadCameras(url) {
   if (params.get('camera') !== null && state.cameras[n]) state.camera = n;
 }
 
-const loading = [streamInto(params.get('stream') || '../../../out/default.m4d')];
+const loading = [streamer ? Promise.resolve() : streamInto(streamUrl)];
 if (params.get('cameras')) loading.push(loadCameras(params.get('cameras')));
 window.m4dSpark.loaded = Promise.all(loading)
   .then(() => { state.ended = true; })
