@@ -10,22 +10,19 @@
 
 #include "chunked_encode.h"
 #include "command_status.h"
-#include "dataset/up_axis_estimate.h"
+#include "encode_steps.h"
 #include "io/atomic_file.h"
 #include "mpi_ranks.h"
 #include "number_checks.h"
 #include "peak_memory.h"
 #include "pipeline/rate_points.h"
 #include "pipeline/sequence_encoder.h"
-#include "ply/gaussian_ply.h"
 #include "rate_point_name.h"
-#include "rendition_manifest.h"
+#include "rendition_encode.h"
 #include "sequence_report_output.h"
 #include "strategy_arguments.h"
 #include "stream/frame_rate.h"
 #include "stream_check.h"
-#include "train/keyframe_stage.h"
-#include "train/progress_bar.h"
 #include "video/video_writer.h"
 #include "view_strip.h"
 
@@ -383,122 +380,11 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   return o;
 }
 
-// --fps, else the capture's recorded rate, else kDefaultFps (said on stderr).
-Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOptions* options) {
-  if (!fps.empty()) return ParseFrameRate(fps, &options->fps_num, &options->fps_den);
-  if (capture.fps_num > 0) {
-    options->fps_num = capture.fps_num;
-    options->fps_den = capture.fps_den;
-    return Status::Ok();
-  }
-  options->fps_num = kDefaultFps;
-  options->fps_den = 1;
-  std::fprintf(stderr, "%s records no frame rate: %u fps assumed (--fps to set it)\n",
-               capture.layout.c_str(), kDefaultFps);
-  return Status::Ok();
-}
-
-// --up, or the capture cameras' up with "auto" (said on stdout: players and exporters turn
-// the content by it).
-Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options) {
-  M4D_RETURN_IF_ERROR(ParseUpAxis(up, &options->up_axis));
-  if (options->up_axis != kUpAxisAuto) return Status::Ok();
-  options->up_axis = EstimateUpAxis(capture.cameras);
-  std::printf("up axis %s (the cameras' mean up; --up to state another)\n",
-              UpAxisName(options->up_axis).c_str());
-  return Status::Ok();
-}
-
 std::string ReportPath(const EncodeArguments& args) {
   return args.json.empty() ? args.output + ".json" : args.json;
 }
 
 namespace {
-
-// What the automatic keyframe settings chose (when the first keyframe is trained here).
-struct AutomaticChoices {
-  bool trains_first = false;
-  PruneShareChoice prune;
-  RateWeightChoice rate;
-};
-
-// The automatic prune share and keyframe rate weight: an automatic share needs the first
-// keyframe's training, a given keyframe has none. Under MPI rank 0 chooses for every rank.
-Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
-                               EncoderOptions* options, AutomaticChoices* choices) {
-  choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
-  Status status = Status::Ok();
-  if (CurrentRanks().rank == 0 && choices->trains_first && args.prune.Automatic()) {
-    status =
-        ResolvePruneShare(capture, options->first_frame, FirstKeyframeTraining(*options),
-                          args.prune, &options->keyframe.importance_prune_share, &choices->prune);
-  }
-  if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
-      args.keyframe_rate.automatic) {
-    RateWeightArguments rate = args.keyframe_rate;
-    rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
-    status = ResolveRateWeight(capture, options->first_frame, FirstKeyframeTraining(*options), rate,
-                               options->keyframe_rate_weight, &options->keyframe_rate_weight,
-                               &choices->rate);
-  }
-  if (!AllRanksOk(status.ok()))
-    return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 failed") : status;
-  double chosen[2] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight};
-  BroadcastDoubles(chosen, 2);
-  options->keyframe.importance_prune_share = static_cast<float>(chosen[0]);
-  options->keyframe_rate_weight = chosen[1];
-  return Status::Ok();
-}
-
-Status ReadFirstKeyframe(const EncodeArguments& args, int sh_degree, GaussianModel* model) {
-  GaussianSet set;
-  M4D_RETURN_IF_ERROR(ReadGaussianPly(args.keyframe_ply, &set));
-  if (set.sh_degree < sh_degree) {
-    return Status(M4D_ERR_INVALID_ARG, args.keyframe_ply + ": SH degree " +
-                                           std::to_string(set.sh_degree) + " below the stream's " +
-                                           std::to_string(sh_degree));
-  }
-  return ModelFromGaussianSet(set, sh_degree, model);
-}
-
-// Progress on stderr and the frame table on stdout; under MPI each rank's lines are prefixed
-// with it, and keyframe training reports every quarter instead of drawing a bar.
-struct EncodeProgress {
-  ProgressBar bar;
-  bool header = true;
-  int last_quarter = -1;
-
-  EncoderCallbacks Callbacks() {
-    EncoderCallbacks callbacks;
-    const bool several = CurrentRanks().size > 1;
-    callbacks.training = [this, several](const std::string& stage, int frame,
-                                         const TrainingProgress& p) {
-      if (p.iteration == 0) return;
-      const std::string label = stage + " " + std::to_string(frame);
-      if (several) {
-        const int quarter = 4 * p.iteration / std::max(1, p.iterations);
-        if (quarter != last_quarter) {
-          std::fprintf(stderr, "%s%s: %d/%d iterations\n", RankPrefix().c_str(), label.c_str(),
-                       p.iteration, p.iterations);
-        }
-        last_quarter = quarter == 4 ? -1 : quarter;
-        return;
-      }
-      bar.Update(p, label);
-      if (p.iteration == p.iterations) bar.Finish();
-    };
-    callbacks.stage = [several](const std::string& stage, int frame) {
-      if (!several) ShowStatus(stderr, "  frame " + std::to_string(frame) + ": " + stage);
-    };
-    callbacks.frame_coded = [this, several](const FrameReport& f) {
-      ClearStatus(stderr);
-      if (several) std::fputs(RankPrefix().c_str(), stdout);
-      PrintFrameLine(stdout, f, header && !several);
-      header = false;
-    };
-    return callbacks;
-  }
-};
 
 Status EncodeWhole(const EncodeArguments& args, const Capture& capture,
                    const EncoderOptions& options, EncodeProgress* progress, SequenceReport* report,
@@ -640,151 +526,6 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   std::printf("%-34s %zu frames decoded by the SDK, every hash equal to the encoder's\n",
               "decoder check", report->frames.size());
   std::printf("%-34s %s (report %s)\n", "stream", args.output.c_str(), json_path.c_str());
-  return Status::Ok();
-}
-
-namespace {
-
-// The renditions' names checked and their outputs writable, before any work.
-Status CheckRenditionOutputs(const EncodeArguments& args, bool force) {
-  if (!args.rate_point.empty()) {
-    return Status(M4D_ERR_INVALID_ARG, "--renditions names the rate points: no --rate-point");
-  }
-  if (args.chunk_frames > 0 || CurrentRanks().size > 1 || !args.views.empty() ||
-      !args.json.empty() || args.keyframe_source || args.encoder.independent_frames) {
-    return Status(M4D_ERR_INVALID_ARG,
-                  "--renditions codes no chunks (--chunk-frames, MPI), no --views, no --json "
-                  "(each rendition's report is beside its stream) and no baseline");
-  }
-  std::vector<std::string> outputs;
-  for (size_t r = 0; r < args.renditions.size(); ++r) {
-    const std::string& id = args.renditions[r];
-    RatePointSettings point;
-    M4D_RETURN_IF_ERROR(FindRatePoint(id, &point));
-    if (std::find(args.renditions.begin(), args.renditions.begin() + r, id) !=
-        args.renditions.begin() + r) {
-      return Status(M4D_ERR_INVALID_ARG, "--renditions: " + id + " given twice");
-    }
-    outputs.push_back(RenditionPath(args.output, id));
-    outputs.push_back(RenditionPath(args.output, id) + ".json");
-  }
-  outputs.push_back(ManifestPath(args.output));
-  for (const std::string& path : outputs) {
-    std::error_code ec;
-    if (!force && std::filesystem::is_regular_file(path, ec)) {
-      return Status(M4D_ERR_INVALID_ARG, path + " exists: give --force to replace it");
-    }
-  }
-  for (const std::string& path : outputs) M4D_RETURN_IF_ERROR(CheckOutputPath(path));
-  return Status::Ok();
-}
-
-}  // namespace
-
-Status RunRenditionEncode(const EncodeArguments& args, bool force) {
-  M4D_RETURN_IF_ERROR(CheckRenditionOutputs(args, force));
-  const size_t count = args.renditions.size();
-  std::vector<EncoderOptions> options(count);
-  for (size_t r = 0; r < count; ++r) {
-    EncodeArguments point = args;
-    point.rate_point = args.renditions[r];
-    M4D_RETURN_IF_ERROR(ResolveEncoderOptions(point, &options[r]));
-  }
-  uint32_t unused_num, unused_den;
-  if (!args.fps.empty()) M4D_RETURN_IF_ERROR(ParseFrameRate(args.fps, &unused_num, &unused_den));
-  Capture capture;
-  M4D_RETURN_IF_ERROR(OpenCapture(args.capture, &capture));
-  M4D_RETURN_IF_ERROR(ChooseFrameRate(args.fps, capture, &options[0]));
-  M4D_RETURN_IF_ERROR(ChooseUpAxis(args.up, capture, &options[0]));
-  M4D_RETURN_IF_ERROR(
-      CheckViewsBeforeTraining(capture, options[0].first_frame, options[0].frame_count));
-  // The first rendition's settings train the shared keyframe; automatic choices made for it
-  // hold for every rendition.
-  EncodeArguments first_args = args;
-  first_args.rate_point = args.renditions[0];
-  AutomaticChoices choices;
-  M4D_RETURN_IF_ERROR(ResolveAutomaticChoices(first_args, capture, &options[0], &choices));
-  for (size_t r = 1; r < count; ++r) {
-    options[r].fps_num = options[0].fps_num;
-    options[r].fps_den = options[0].fps_den;
-    options[r].up_axis = options[0].up_axis;
-    options[r].keyframe.importance_prune_share = options[0].keyframe.importance_prune_share;
-    if (args.keyframe_rate.automatic && choices.trains_first) {
-      options[r].keyframe_rate_weight = options[0].keyframe_rate_weight;
-    }
-  }
-
-  EncodeProgress progress;
-  GaussianModel first;
-  if (!args.keyframe_ply.empty()) {
-    M4D_RETURN_IF_ERROR(ReadFirstKeyframe(args, options[0].sh_degree, &first));
-  } else {
-    EncoderCallbacks callbacks = progress.Callbacks();
-    const int frame = options[0].first_frame;
-    M4D_RETURN_IF_ERROR(TrainKeyframe(
-        capture, frame, FirstKeyframeTraining(options[0]),
-        [&](const TrainingProgress& p) { callbacks.training("keyframe", frame, p); }, &first));
-  }
-
-  std::vector<std::vector<uint8_t>> streams(count);
-  std::vector<SequenceReport> reports(count);
-  for (size_t r = 0; r < count; ++r) {
-    std::printf("\nrendition %s%s\n", args.renditions[r].c_str(),
-                r == 0 ? " (decides the GOPs)" : "");
-    progress.header = true;
-    SequenceEncoder encoder(capture, options[r]);
-    encoder.SetFirstKeyframe(first);
-    M4D_RETURN_IF_ERROR(encoder.Encode(progress.Callbacks(), &reports[r]));
-    reports[r].peak_memory_bytes = PeakMemoryBytes();
-    PrintSummary(stdout, reports[r]);
-    streams[r] = encoder.stream();
-    if (r > 0) continue;
-    for (const FrameReport& f : reports[0].frames) {
-      const int frame = static_cast<int>(f.frame_index);
-      if (f.keyframe && frame != options[0].first_frame) {
-        for (size_t o = 1; o < count; ++o) options[o].gop.starts.push_back(frame);
-      }
-    }
-  }
-
-  std::vector<RenditionStream> manifest_streams;
-  for (size_t r = 0; r < count; ++r) {
-    const std::string& id = args.renditions[r];
-    const std::string path = RenditionPath(args.output, id);
-    M4D_RETURN_IF_ERROR(WriteFileAtomically(path, streams[r].data(), streams[r].size()));
-    EncodeArguments point = args;
-    point.rate_point = id;
-    const nlohmann::json extra = {{"options", EncodeOptionsJson(point)},
-                                  {"rendition",
-                                   {{"id", id},
-                                    {"keyframe_shared_with", args.renditions},
-                                    {"gops_from", args.renditions[0]}}}};
-    M4D_RETURN_IF_ERROR(WriteReportJson(path + ".json", reports[r], extra.dump()));
-    M4D_RETURN_IF_ERROR(CheckDecodedHashes(streams[r], reports[r]));
-    manifest_streams.push_back(
-        {id, id, std::filesystem::path(path).filename().string(), &streams[r]});
-  }
-  std::string manifest;
-  M4D_RETURN_IF_ERROR(RenditionManifestJson(manifest_streams, &manifest));
-  const std::string manifest_path = ManifestPath(args.output);
-  M4D_RETURN_IF_ERROR(WriteFileAtomically(
-      manifest_path, reinterpret_cast<const uint8_t*>(manifest.data()), manifest.size()));
-  std::printf("\n%-34s %zu renditions, every frame decoded by the SDK to the encoder's hash\n",
-              "decoder check", count);
-  std::printf("%-10s %12s %10s %8s\n", "rendition", "bytes", "kbit/s", "PSNR");
-  for (size_t r = 0; r < count; ++r) {
-    double psnr = 0;
-    int measured = 0;
-    for (const FrameReport& f : reports[r].frames) {
-      if (f.held_out) psnr += f.psnr, ++measured;
-    }
-    const double seconds =
-        static_cast<double>(reports[r].frames.size()) * options[0].fps_den / options[0].fps_num;
-    std::printf("%-10s %12zu %10.1f %8.2f\n", args.renditions[r].c_str(), streams[r].size(),
-                8.0 * static_cast<double>(streams[r].size()) / seconds / 1000.0,
-                measured > 0 ? psnr / measured : 0.0);
-  }
-  std::printf("%-34s %s\n", "manifest", manifest_path.c_str());
   return Status::Ok();
 }
 

@@ -75,12 +75,6 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args);
 // Encodes with progress on stderr and the frame table on stdout; writes stream and JSON.
 Status RunEncode(const EncodeArguments& args, SequenceReport* report);
 
-// Encodes args.renditions: the first keyframe trained once (or read from args.keyframe_ply),
-// then each rendition's sequence from it; the first rendition's GOP starts are imposed on the
-// others (so random-access points are aligned too). Writes every stream with its JSON report,
-// then the manifest. Outputs that exist are refused unless `force`.
-Status RunRenditionEncode(const EncodeArguments& args, bool force);
-
 void AddEncodeCommand(CLI::App* app, int* exit_code);
 
 }  // namespace m4d

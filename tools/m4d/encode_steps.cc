@@ -1,0 +1,105 @@
+#include "encode_steps.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "dataset/up_axis_estimate.h"
+#include "mpi_ranks.h"
+#include "ply/gaussian_ply.h"
+#include "sequence_report_output.h"
+#include "stream/frame_rate.h"
+
+namespace m4d {
+
+Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOptions* options) {
+  if (!fps.empty()) return ParseFrameRate(fps, &options->fps_num, &options->fps_den);
+  if (capture.fps_num > 0) {
+    options->fps_num = capture.fps_num;
+    options->fps_den = capture.fps_den;
+    return Status::Ok();
+  }
+  options->fps_num = kDefaultFps;
+  options->fps_den = 1;
+  std::fprintf(stderr, "%s records no frame rate: %u fps assumed (--fps to set it)\n",
+               capture.layout.c_str(), kDefaultFps);
+  return Status::Ok();
+}
+
+Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options) {
+  M4D_RETURN_IF_ERROR(ParseUpAxis(up, &options->up_axis));
+  if (options->up_axis != kUpAxisAuto) return Status::Ok();
+  options->up_axis = EstimateUpAxis(capture.cameras);
+  std::printf("up axis %s (the cameras' mean up; --up to state another)\n",
+              UpAxisName(options->up_axis).c_str());
+  return Status::Ok();
+}
+
+Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
+                               EncoderOptions* options, AutomaticChoices* choices) {
+  choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
+  Status status = Status::Ok();
+  if (CurrentRanks().rank == 0 && choices->trains_first && args.prune.Automatic()) {
+    status =
+        ResolvePruneShare(capture, options->first_frame, FirstKeyframeTraining(*options),
+                          args.prune, &options->keyframe.importance_prune_share, &choices->prune);
+  }
+  if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
+      args.keyframe_rate.automatic) {
+    RateWeightArguments rate = args.keyframe_rate;
+    rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
+    status = ResolveRateWeight(capture, options->first_frame, FirstKeyframeTraining(*options), rate,
+                               options->keyframe_rate_weight, &options->keyframe_rate_weight,
+                               &choices->rate);
+  }
+  if (!AllRanksOk(status.ok()))
+    return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 failed") : status;
+  double chosen[2] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight};
+  BroadcastDoubles(chosen, 2);
+  options->keyframe.importance_prune_share = static_cast<float>(chosen[0]);
+  options->keyframe_rate_weight = chosen[1];
+  return Status::Ok();
+}
+
+Status ReadFirstKeyframe(const EncodeArguments& args, int sh_degree, GaussianModel* model) {
+  GaussianSet set;
+  M4D_RETURN_IF_ERROR(ReadGaussianPly(args.keyframe_ply, &set));
+  if (set.sh_degree < sh_degree) {
+    return Status(M4D_ERR_INVALID_ARG, args.keyframe_ply + ": SH degree " +
+                                           std::to_string(set.sh_degree) + " below the stream's " +
+                                           std::to_string(sh_degree));
+  }
+  return ModelFromGaussianSet(set, sh_degree, model);
+}
+
+EncoderCallbacks EncodeProgress::Callbacks() {
+  EncoderCallbacks callbacks;
+  const bool several = CurrentRanks().size > 1;
+  callbacks.training = [this, several](const std::string& stage, int frame,
+                                       const TrainingProgress& p) {
+    if (p.iteration == 0) return;
+    const std::string label = stage + " " + std::to_string(frame);
+    if (several) {
+      const int quarter = 4 * p.iteration / std::max(1, p.iterations);
+      if (quarter != last_quarter) {
+        std::fprintf(stderr, "%s%s: %d/%d iterations\n", RankPrefix().c_str(), label.c_str(),
+                     p.iteration, p.iterations);
+      }
+      last_quarter = quarter == 4 ? -1 : quarter;
+      return;
+    }
+    bar.Update(p, label);
+    if (p.iteration == p.iterations) bar.Finish();
+  };
+  callbacks.stage = [several](const std::string& stage, int frame) {
+    if (!several) ShowStatus(stderr, "  frame " + std::to_string(frame) + ": " + stage);
+  };
+  callbacks.frame_coded = [this, several](const FrameReport& f) {
+    ClearStatus(stderr);
+    if (several) std::fputs(RankPrefix().c_str(), stdout);
+    PrintFrameLine(stdout, f, header && !several);
+    header = false;
+  };
+  return callbacks;
+}
+
+}  // namespace m4d

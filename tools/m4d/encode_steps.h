@@ -1,0 +1,55 @@
+// Steps that `m4d encode` shares between one stream (encode_command.cc) and renditions
+// (rendition_encode.cc): the frame rate and up axis the capture decides, the automatic keyframe
+// settings, a given first keyframe, and the progress on stderr with the frame table on stdout.
+#ifndef M4D_TOOLS_M4D_ENCODE_STEPS_H_
+#define M4D_TOOLS_M4D_ENCODE_STEPS_H_
+
+#include <string>
+
+#include "common/status.h"
+#include "dataset/capture.h"
+#include "encode_command.h"
+#include "pipeline/encoder_options.h"
+#include "pipeline/sequence_encoder.h"
+#include "prune_share_arguments.h"
+#include "rate_weight_arguments.h"
+#include "train/gaussian_model.h"
+#include "train/progress_bar.h"
+
+namespace m4d {
+
+// --fps, else the capture's recorded rate, else kDefaultFps (said on stderr).
+Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOptions* options);
+
+// --up, or the capture cameras' up with "auto" (said on stdout: players and exporters turn
+// the content by it).
+Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options);
+
+// What the automatic keyframe settings chose (when the first keyframe is trained here).
+struct AutomaticChoices {
+  bool trains_first = false;
+  PruneShareChoice prune;
+  RateWeightChoice rate;
+};
+
+// The automatic prune share and keyframe rate weight: an automatic share needs the first
+// keyframe's training, a given keyframe has none. Under MPI rank 0 chooses for every rank.
+Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
+                               EncoderOptions* options, AutomaticChoices* choices);
+
+// The first keyframe of args.keyframe_ply at the stream's SH degree (an error when below it).
+Status ReadFirstKeyframe(const EncodeArguments& args, int sh_degree, GaussianModel* model);
+
+// Progress on stderr and the frame table on stdout; under MPI each rank's lines are prefixed
+// with it, and keyframe training reports every quarter instead of drawing a bar.
+struct EncodeProgress {
+  ProgressBar bar;
+  bool header = true;
+  int last_quarter = -1;
+
+  EncoderCallbacks Callbacks();
+};
+
+}  // namespace m4d
+
+#endif  // M4D_TOOLS_M4D_ENCODE_STEPS_H_
