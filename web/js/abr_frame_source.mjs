@@ -36,6 +36,7 @@ export class AbrFrameSource {
     this.lastRendition = null;
     this.waiting = [];
     this.loop = null;
+    this.running = false;
     this.stopping = false;
     controller.options.onFrame = (frame, rendition) => this.onFrame(frame, rendition);
   }
@@ -94,6 +95,7 @@ export class AbrFrameSource {
   // Fetches GOPs in the background while fewer than maxFrames frames wait.
   start() {
     this.stopping = false;
+    this.running = true;
     this.loop = (async () => {
       try {
         while (!this.stopping && !this.controller.done) {
@@ -107,6 +109,7 @@ export class AbrFrameSource {
       } catch (error) {
         this.error = error instanceof Error ? error : new Error(String(error));
       } finally {
+        this.running = false;
         this.notify();
       }
     })();
@@ -117,7 +120,7 @@ export class AbrFrameSource {
     const start = performance.now();
     while (this.queue.length === 0) {
       if (this.error) throw this.error;
-      if (this.controller.done) {
+      if (!this.running && this.controller.done) {
         this.ended = true;
         return null;
       }
