@@ -5,7 +5,7 @@
 // slow (the top rendition's bandwidth, far below what it needs with the safety factor), then
 // fast again. Each page steps up, down and up at random-access GOPs, the first frame shown of
 // each new rendition carries its static layer, frame indices only increase across switches,
-// and no GOP arrives more than a GOP's duration late. Needs scripts/build.sh and
+// and no GOP arrives (nor frame shows) more than a GOP's duration late. Needs scripts/build.sh and
 // scripts/build_web.sh.
 import assert from 'node:assert/strict';
 import { mkdtempSync, rmSync } from 'node:fs';
