@@ -96,5 +96,10 @@ export declare class AbrController {
   fetchRange(url: string, offset: number, length: number): Promise<Uint8Array>;
   /** The throughput estimate decisions use, bits per second. */
   decisionEstimate(): number;
+  /** Restarts at the random-access GOP at or before `frame`; returns its first frame. */
+  seek(frame: number): number;
+  /** The decoder of the current rendition, or null. */
+  readonly decoder: M4dDecoder | null;
+  readonly options: AbrOptions & { maxBufferSeconds: number };
   close(): void;
 }

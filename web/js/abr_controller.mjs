@@ -219,7 +219,7 @@ export class AbrController {
     const now = performance.now();
     let stallMs = 0;
     if (this.playStart < 0) {
-      this.playStart = now - contentMs;
+      this.playStart = now - contentMs - this.stalledMs;  // stalledMs: 0 but after a seek
     } else {
       const dueAt = this.playStart + this.stalledMs + contentMs;
       if (now > dueAt) {
@@ -256,6 +256,21 @@ export class AbrController {
       throw new Error(`m4d rendition: ${url}: ${bytes.length} bytes at ${offset}, not ${length}`);
     }
     return bytes;
+  }
+
+  // Restarts at the random-access GOP at or before `frame` (with a new decoder; playback
+  // timing starts again from it). Returns the first frame of that GOP. Not while nextGop() runs.
+  seek(frame) {
+    if (!this.manifest) throw new Error('AbrController: load() first');
+    const gops = this.renditions[0].gops;
+    let g = 0;
+    gops.forEach((gop, i) => {
+      if (gop.random_access && gop.frame <= frame) g = i;
+    });
+    this.close();
+    this.nextGopIndex = g;
+    this.playStart = -1;
+    return gops[g].frame;
   }
 
   // Closes the decoder.

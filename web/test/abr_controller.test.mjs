@@ -1,20 +1,19 @@
 // Adaptive bitrate (web/js/abr_controller.mjs) against a throttled local HTTP server: two
-// renditions of a tiny generated scene made by `m4d encode --renditions r1,r5` (needs the
-// native build, scripts/build.sh), served with Range support at a rate the test sets per GOP.
+// renditions of a tiny generated scene made by `m4d encode --renditions r1,r5` (abr_fixture.mjs;
+// needs the native build, scripts/build.sh), served with Range support at a rate the test sets per GOP.
 // The rates are 10x apart, far from the decision thresholds, so the decisions do not depend
 // on timing: the controller steps up at the start, down when the rate falls, up when it
 // recovers, never stalls longer than a GOP, and every frame decodes to the hash of its own
 // rendition's frame. Run: node --test web/test/ (after scripts/build_web.sh).
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath } from 'node:url';
 
 import { AbrController, chooseRendition, validateManifest } from '../js/abr_controller.mjs';
 import { throttledServer } from '../tools/throttled_server.mjs';
+import { encodeRenditions } from './abr_fixture.mjs';
 
 const root = new URL('../../', import.meta.url);
 const moduleDir = process.env.M4D_WEB_MODULE_DIR
@@ -22,7 +21,6 @@ const moduleDir = process.env.M4D_WEB_MODULE_DIR
   : new URL('build/web/module/', root);
 const { loadM4d } = await import(new URL('m4d.mjs', moduleDir));
 const m4d = await loadM4d();
-const m4dCli = fileURLToPath(new URL('build/release/tools/m4d/m4d', root));
 
 // Frame index -> hash of a whole stream decoded at once.
 function referenceHashes(path) {
@@ -49,14 +47,7 @@ test('steps down when throughput falls and up when it recovers, without a long s
   const dir = mkdtempSync(join(tmpdir(), 'm4d-abr-'));
   let server;
   try {
-    execFileSync(m4dCli, ['scene', '-o', join(dir, 'scene'), '--cameras', '5', '--width', '48',
-      '--height', '36', '--frames', '16', '--points', '1500'], { stdio: 'ignore' });
-    execFileSync(m4dCli, ['encode', join(dir, 'scene'), '-o', join(dir, 'abr.m4d'),
-      '--keyframe-iterations', '60', '--retrain-iterations', '20', '--motion-iterations', '5',
-      '--compensation-iterations', '5', '--lookahead', '1', '--max-gaussians', '3000',
-      '--fixed-gop', '2', '--random-access', '0', '--fps', '5', '--renditions', 'r1,r5'],
-    { stdio: 'ignore' });
-    const manifest = validateManifest(JSON.parse(readFileSync(join(dir, 'abr.manifest.json'))));
+    const manifest = encodeRenditions(dir);
     assert.deepEqual(manifest.renditions.map((r) => r.id), ['r1', 'r5']);
     const [low, high] = manifest.renditions;
     assert.ok(low.bytes < high.bytes);

@@ -21,3 +21,19 @@ export async function playAdaptive(manifestUrl: string): Promise<AbrSwitch[]> {
   if (abr.stalls.count > frames) throw new Error(`${abr.stalls.ms} ms stalled`);
   return abr.switchLog;
 }
+
+// The controller as a PlayerCore frame source (abr_frame_source.d.mts).
+import { AbrFrameSource } from '../js/abr_frame_source.mjs';
+import { PlayerCore } from '../js/player_core.mjs';
+
+export async function playerOverManifest(manifestUrl: string): Promise<string | null> {
+  const m4d = await loadM4d();
+  const source = await AbrFrameSource.open(new AbrController({ manifestUrl, openDecoder: () => m4d.openDecoder() }));
+  const core = new PlayerCore(source);
+  core.play();
+  const frame = await source.nextFrame();
+  const switches: AbrSwitch[] = source.switchLog;
+  await source.seek(switches.length ? switches[0].frame : 0);
+  await source.close();
+  return frame && frame.staticChanged ? frame.rendition : source.rendition;
+}

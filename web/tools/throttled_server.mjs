@@ -1,6 +1,7 @@
 // A local HTTP server of a directory's files with HTTP Range support at a bandwidth the caller
 // changes while it runs (state.rate, bytes per second), recording the ranges it serves: what
-// the adaptive-bitrate test and bench play renditions from.
+// the adaptive-bitrate test and bench play renditions from. It allows cross-origin requests
+// (CORS), so that a page served by another server plays from it.
 //
 //   const server = await throttledServer(dir);   // server.base: 'http://127.0.0.1:PORT/'
 //   server.rate = 50_000;                        // applies from the next request
@@ -16,6 +17,13 @@ const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 export async function throttledServer(dir, { rate = 1e6, chunk = 512 } = {}) {
   const state = { rate, served: [], base: '', close: null };
   const server = createServer(async (req, res) => {
+    // Cross-origin: a page served elsewhere fetches the manifest and its ranges.
+    res.setHeader('Access-Control-Allow-Origin', '*');
+    res.setHeader('Access-Control-Expose-Headers', 'Content-Range, Content-Length');
+    if (req.method === 'OPTIONS') {
+      res.writeHead(204, { 'Access-Control-Allow-Headers': 'Range', 'Access-Control-Max-Age': '600' }).end();
+      return;
+    }
     let data;
     try {
       const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);

@@ -12,8 +12,14 @@
 //   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
 //                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
 //                  instead of one fetch into the worker decoder
+//   manifest=URL   adaptive bitrate: plays the renditions of `m4d encode --renditions`
+//                  (OUT.manifest.json) GOP by GOP by range requests, choosing each GOP's
+//                  rendition from the measured throughput (AbrController through
+//                  AbrFrameSource); window.m4dPlayCanvas.abr has the switch log and stalls
 import * as pc from 'playcanvas';
 import { M4dPlayCanvasAdapter, setCaptureCamera } from '../../adapters/playcanvas_adapter.mjs';
+import { AbrController } from '../../js/abr_controller.mjs';
+import { AbrFrameSource } from '../../js/abr_frame_source.mjs';
 import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
 import { DecoderFrameSource } from '../../js/splat_frame.mjs';
@@ -28,9 +34,24 @@ canvas.height = Number(params.get('height')) || 540;
 const moduleUrl = new URL(params.get('module') || '/build/web/module/', location.href).href.replace(/\/?$/, '/');
 const streamUrl = new URL(params.get('stream') || '/out/default.m4d', location.href).href;
 // The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
-let decoder, streamer = null;
+let decoder, streamer = null, abr = null;
 try {
-  if (params.get('gops') === '1') {
+  if (params.get('manifest')) {
+    const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
+    const m4d = await loadM4d();
+    const controller = new AbrController({
+      manifestUrl: new URL(params.get('manifest'), location.href).href, openDecoder: () => m4d.openDecoder(),
+    });
+    decoder = await AbrFrameSource.open(controller);
+    // For tests: the switches, the controller's stalls, the frames shown ({ index, rendition,
+    // staticChanged, ms: wall clock }).
+    abr = {
+      source: decoder, shown: [],
+      get switchLog() { return decoder.switchLog; },
+      get stalls() { return decoder.stalls; },
+      get rendition() { return decoder.shownRendition; },
+    };
+  } else if (params.get('gops') === '1') {
     const { loadM4d } = await import(new URL('m4d.mjs', moduleUrl).href);
     streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
     decoder = new DecoderFrameSource(streamer);
@@ -136,7 +157,7 @@ function advance(now) {
   const frame = core.tick(now);
   if (frame) show(frame);
   if (core.error) $('error').textContent = String(core.error.message || core.error);
-  if (core.playing && core.ended && state.frame && !state.looping) {
+  if (core.playing && core.ended && state.frame && !state.looping && !abr) {
     state.looping = true;
     core.seek(0).finally(() => { state.looping = false; });
   }
@@ -155,13 +176,16 @@ function show(splatFrame) {
   state.frame = { index: splatFrame.frameIndex, isKeyframe: splatFrame.isKeyframe, staticChanged: splatFrame.staticChanged };
   ++state.shown;
   state.history.push(splatFrame.frameIndex);
+  if (abr) {
+    abr.shown.push({ index: splatFrame.frameIndex, rendition: splatFrame.rendition, staticChanged: splatFrame.staticChanged, ms: performance.now() });
+  }
   if (state.history.length > 64) state.history.shift();
   $('frame').textContent = `frame ${splatFrame.frameIndex}${splatFrame.isKeyframe ? ' (key)' : ''}`;
 }
 
 app.on('update', () => {
   advance(performance.now());
-  $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
+  $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${abr ? `rendition ${abr.rendition}` : streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
     `dropped ${core.stats.dropped}`;
 });
 $('play').textContent = state.playing ? 'Pause' : 'Play';
@@ -178,7 +202,7 @@ const nextFrame = () => new Promise(requestAnimationFrame);
 
 // For tests and embedding pages.
 window.m4dPlayCanvas = {
-  app, pc, adapter, state, decoder, core, streamer, camera,
+  app, pc, adapter, state, decoder, core, streamer, abr, camera,
   // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
   // worker decoder, waiting for its bytes), and resolves after a sorted drawing of it.
   async showFrame(index) {
@@ -226,7 +250,7 @@ async function load() {
     setCaptureCamera(pc, camera, await captureCamera(params.get('cameras'), Number(params.get('camera') || 0)),
       canvas.width, canvas.height);
   }
-  if (streamer) {
+  if (streamer || abr) {
     state.ended = true;  // the streamer fetches GOPs as frames are asked for
     return;
   }

@@ -14,11 +14,17 @@
 //   gops=1         streams by GOP with HTTP range requests (GopStreamer; the stream's sidecar
 //                  index STREAM.gops.json from m4d_probe --gop-index) on a main-thread decoder,
 //                  instead of one fetch into the worker decoder
+//   manifest=URL   adaptive bitrate: plays the renditions of `m4d encode --renditions`
+//                  (OUT.manifest.json) GOP by GOP by range requests, choosing each GOP's
+//                  rendition from the measured throughput (AbrController through
+//                  AbrFrameSource); window.m4dSpark.abr has the switch log and stalls
 import * as THREE from 'three';
 import * as spark from '@sparkjsdev/spark';
 import {
   M4dSparkAdapter, camerasOfTransforms, fitCaptureCamera, m4dSparkRendererOptions,
 } from '../../adapters/spark_adapter.mjs';
+import { AbrController } from '../../js/abr_controller.mjs';
+import { AbrFrameSource } from '../../js/abr_frame_source.mjs';
 import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
 import { DecoderFrameSource } from '../../js/splat_frame.mjs';
@@ -34,9 +40,17 @@ const moduleUrl = new URL(params.get('module') || '../../../build/web/module/', 
 const m4dUrl = new URL('m4d.mjs', moduleUrl.href.replace(/\/?$/, '/')).href;
 const streamUrl = new URL(params.get('stream') || '../../../out/default.m4d', location.href).href;
 // The frame source: the worker decoder (fed by one fetch), or with gops=1 a GopStreamer.
-let decoder, streamer = null;
+let decoder, streamer = null, abr = null;
 try {
-  if (params.get('gops') === '1') {
+  if (params.get('manifest')) {
+    const { loadM4d } = await import(m4dUrl);
+    const m4d = await loadM4d();
+    const controller = new AbrController({
+      manifestUrl: new URL(params.get('manifest'), location.href).href, openDecoder: () => m4d.openDecoder(),
+    });
+    decoder = await AbrFrameSource.open(controller);
+    abr = abrLog(decoder);
+  } else if (params.get('gops') === '1') {
     const { loadM4d } = await import(m4dUrl);
     streamer = await GopStreamer.open({ m4d: await loadM4d(), url: streamUrl });
     decoder = new DecoderFrameSource(streamer);
@@ -49,6 +63,18 @@ try {
   throw error;
 }
 const core = new PlayerCore(decoder);
+
+// What adaptive bitrate did, for tests: the switches, the controller's stalls, and the frames
+// shown ({ index, rendition, staticChanged, ms: wall clock }).
+function abrLog(source) {
+  return {
+    source,
+    shown: [],
+    get switchLog() { return source.switchLog; },
+    get stalls() { return source.stalls; },
+    get rendition() { return source.shownRendition; },
+  };
+}
 
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, preserveDrawingBuffer: true });
 renderer.setPixelRatio(1);
@@ -119,7 +145,7 @@ function advance(now) {
   const frame = core.tick(now);
   if (frame) show(frame);
   if (core.error) $('error').textContent = String(core.error.message || core.error);
-  if (core.playing && core.ended && state.frame && !state.looping) {
+  if (core.playing && core.ended && state.frame && !state.looping && !abr) {
     state.looping = true;
     core.seek(state.firstIndex).finally(() => { state.looping = false; });
   }
@@ -134,6 +160,9 @@ function show(frame) {
   if (state.firstIndex === null) state.firstIndex = frame.frameIndex;
   ++state.shown;
   state.history.push(frame.frameIndex);
+  if (abr) {
+    abr.shown.push({ index: frame.frameIndex, rendition: frame.rendition, staticChanged: frame.staticChanged, ms: performance.now() });
+  }
   if (state.history.length > 64) state.history.shift();
 }
 
@@ -155,7 +184,7 @@ function tick(now) {
   if (state.frame) {
     $('frame').textContent = `frame ${state.frame.index}${state.frame.isKeyframe ? ' (key)' : ''}`;
     const s = adapter.stats;
-    $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
+    $('readout').textContent = `decode ${decoder.lastDecodeMs.toFixed(1)} ms (${abr ? `rendition ${abr.rendition}` : streamer ? 'by GOP' : 'worker'})   update ${state.updateMs.toFixed(1)} ms   ` +
       `draw ${state.drawMs.toFixed(1)} ms   ${s.staticCount} static + ${s.dynamicCount} dynamic splats   ` +
       `static uploads ${s.staticUploads}   dropped ${core.stats.dropped}`;
   }
@@ -171,7 +200,7 @@ $('play').onclick = () => {
 
 // For tests and benchmarks.
 window.m4dSpark = {
-  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, core, streamer, state,
+  THREE, spark, adapter, scene, camera, renderer, sparkRenderer, decoder, core, streamer, abr, state,
   // Pauses, shows frame `index` (the next frame by a step, any other through a seek of the
   // worker decoder), lets Spark finish generating and sorting for the current camera, draws
   // (unless `settle` is false: then the page's loop draws it when Spark is ready); resolves
@@ -231,7 +260,7 @@ async function loadCameras(url) {
   if (params.get('camera') !== null && state.cameras[n]) state.camera = n;
 }
 
-const loading = [streamer ? Promise.resolve() : streamInto(streamUrl)];
+const loading = [streamer || abr ? Promise.resolve() : streamInto(streamUrl)];
 if (params.get('cameras')) loading.push(loadCameras(params.get('cameras')));
 window.m4dSpark.loaded = Promise.all(loading)
   .then(() => { state.ended = true; })
