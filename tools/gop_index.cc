@@ -117,15 +117,20 @@ Status BuildGopIndex(const uint8_t* data, size_t size, GopIndex* index) {
   return status;
 }
 
-std::string GopIndexJson(const GopIndex& index) {
-  nlohmann::ordered_json gops = nlohmann::ordered_json::array();
-  for (const GopEntry& g : index.gops) {
-    gops.push_back({{"frame", g.frame},
+nlohmann::ordered_json GopsJson(const std::vector<GopEntry>& gops) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::array();
+  for (const GopEntry& g : gops) {
+    json.push_back({{"frame", g.frame},
                     {"frames", g.frames},
                     {"offset", g.offset},
                     {"bytes", g.bytes},
                     {"random_access", g.random_access}});
   }
+  return json;
+}
+
+std::string GopIndexJson(const GopIndex& index) {
+  const nlohmann::ordered_json gops = GopsJson(index.gops);
   const nlohmann::ordered_json json = {
       {"format", "m4d-gop-index"}, {"version", 1},     {"stream_bytes", index.stream_bytes},
       {"frames", index.frames},    {"fps", index.fps}, {"gops", gops}};

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct GopIndex {
 // payload, a truncated stream or one that does not start at a random-access keyframe is an
 // error naming the byte where it was found; *index is then left empty.
 Status BuildGopIndex(const uint8_t* data, size_t size, GopIndex* index);
+
+// The "gops" array of the JSON below: one object per GOP, its fields in GopEntry's order. The
+// rendition manifest embeds it too, so both files describe a GOP alike.
+nlohmann::ordered_json GopsJson(const std::vector<GopEntry>& gops);
 
 // The JSON text above (format, version, stream_bytes, frames, fps, gops).
 std::string GopIndexJson(const GopIndex& index);

@@ -63,14 +63,8 @@ Status RenditionManifestJson(const std::vector<RenditionStream>& renditions, std
   for (size_t r = 0; r < renditions.size(); ++r) {
     const GopIndex& index = indexes[r];
     const double seconds = static_cast<double>(index.frames) / index.fps;
-    nlohmann::json gops = nlohmann::json::array();
-    for (const GopEntry& g : index.gops) {
-      gops.push_back({{"frame", g.frame},
-                      {"frames", g.frames},
-                      {"offset", g.offset},
-                      {"bytes", g.bytes},
-                      {"random_access", g.random_access}});
-    }
+    // The manifest's objects keep their keys sorted (nlohmann::json), as they always have.
+    const nlohmann::json gops = GopsJson(index.gops);
     entries.push_back(
         {{"id", renditions[r].id},
          {"url", renditions[r].url},
