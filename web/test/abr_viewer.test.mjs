@@ -12,31 +12,20 @@ import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { fileURLToPath } from 'node:url';
-import puppeteer from 'puppeteer-core';
-import { serve } from '../tools/serve.mjs';
 import { throttledServer } from '../tools/throttled_server.mjs';
 import { encodeRenditions } from './abr_fixture.mjs';
+import { openPage, startChromium } from './chromium_harness.mjs';
 
-const root = fileURLToPath(new URL('../../', import.meta.url));
-const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
-let server, browser, base, dir, manifest;
+let chromium, dir, manifest;
 
 before(async () => {
   dir = mkdtempSync(join(tmpdir(), 'm4d-abr-viewer-'));
   manifest = encodeRenditions(dir);
-  server = await serve(root);
-  base = `http://127.0.0.1:${server.address().port}`;
-  browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-  });
+  chromium = await startChromium();
 });
 
 after(async () => {
-  await browser?.close();
-  server?.close();
+  await chromium?.close();
   if (dir) rmSync(dir, { recursive: true, force: true });
 });
 
@@ -55,12 +44,10 @@ async function playThrottled(example, global) {
       return g >= 3 && g < 6 ? slow : fast;
     },
   });
-  const page = await browser.newPage();
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(e.message));
+  let page;
   try {
-    await page.goto(`${base}/web/examples/${example}/?manifest=${encodeURIComponent(`${renditions.base}abr.manifest.json`)}` +
-      '&width=160&height=120&mesh=0');
+    page = await openPage(chromium.browser, `${chromium.base}/web/examples/${example}/?manifest=` +
+      `${encodeURIComponent(`${renditions.base}abr.manifest.json`)}&width=160&height=120&mesh=0`);
     const last = manifest.frames - 1;
     await page.waitForFunction((name, lastFrame) => {
       const abr = window[name] && window[name].abr;
@@ -71,11 +58,11 @@ async function playThrottled(example, global) {
       return { shown: abr.shown, switchLog: abr.switchLog, stalls: abr.stalls,
         readout: document.getElementById('readout').textContent, error: document.getElementById('error').textContent };
     }, global);
-    assert.deepEqual(problems, []);
+    assert.deepEqual(page.problems, []);
     assert.equal(log.error, '');
     return { ...log, requestMs, requests: renditions.served.filter((s) => s.url.endsWith('.m4d')).map((s) => s.url) };
   } finally {
-    await page.close();
+    await page?.close();
     await renditions.close();
   }
 }

@@ -9,61 +9,31 @@ import { copyFileSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { fileURLToPath } from 'node:url';
-import puppeteer from 'puppeteer-core';
 import { serve } from '../tools/serve.mjs';
+import { openPage, psnrAgainstPng as psnrOf, root, startChromium } from './chromium_harness.mjs';
+import { checkWorkerPlayback } from './worker_playback_check.mjs';
 
-const root = fileURLToPath(new URL('../../', import.meta.url));
-const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
-let server, browser, base;
+let chromium;
 
 before(async () => {
-  server = await serve(root);
-  base = `http://127.0.0.1:${server.address().port}`;
-  // No GPU here: WebGL2 on SwiftShader, Chromium's CPU rasterizer.
-  browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-  });
+  chromium = await startChromium();
 });
 
 after(async () => {
-  await browser?.close();
-  server?.close();
+  await chromium?.close();
 });
 
+// page.problems goes on gathering the errors thrown in the page later on.
 async function openExample(query) {
-  const page = await browser.newPage();
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(e.message));
-  await page.goto(`${base}/web/examples/playcanvas/?${query}`);
+  const page = await openPage(chromium.browser, `${chromium.base}/web/examples/playcanvas/?${query}`);
   await page.waitForFunction(() => window.m4dPlayCanvas && window.m4dPlayCanvas.state.frame, { timeout: 30000 });
   await page.evaluate(() => window.m4dPlayCanvas.loaded);
-  assert.deepEqual(problems, []);
-  page.problems = problems;  // errors thrown in the page later on
+  assert.deepEqual(page.problems, []);
   return page;
 }
 
-// PSNR in dB of the page's canvas against a PNG (bytes), decoded by the browser.
-async function psnrAgainstPng(page, png) {
-  return page.evaluate(async (base64) => {
-    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-    const image = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d');
-    context.drawImage(image, 0, 0);
-    const reference = context.getImageData(0, 0, image.width, image.height).data;
-    const drawn = window.m4dPlayCanvas.readRgb();
-    if (drawn.length !== 3 * image.width * image.height) return -1;
-    let sum = 0;
-    for (let p = 0; p < image.width * image.height; ++p) {
-      for (let c = 0; c < 3; ++c) sum += (drawn[3 * p + c] - reference[4 * p + c]) ** 2;
-    }
-    const mse = sum / drawn.length;
-    return mse === 0 ? Infinity : 10 * Math.log10((255 * 255) / mse);
-  }, png.toString('base64'));
-}
+// PSNR in dB of the example's canvas against a PNG (bytes).
+const psnrAgainstPng = (page, png) => psnrOf(page, png, 'm4dPlayCanvas');
 
 test('plays the default scene through PlayCanvas as m4d_play draws it', async (t) => {
   const stream = join(root, 'conformance/streams/enc_adaptive_gop.m4d');
@@ -149,33 +119,11 @@ test('plays the default scene through PlayCanvas as m4d_play draws it', async (t
   }
 });
 
-// The page decodes in a Web Worker (M4dWorkerDecoder) paced by PlayerCore: it shows frames in
-// order (dropping some if decoding fell behind) and loops; the main thread loads no wasm.
+// The page decodes in a Web Worker paced by PlayerCore (worker_playback_check.mjs).
 test('plays through the worker decoder at the stream fps, looping at the end', async () => {
   const page = await openExample('stream=/conformance/streams/enc_adaptive_gop.m4d&width=96&height=72');
   try {
-    await page.waitForFunction(() => {
-      const h = window.m4dPlayCanvas.state.history;
-      return h.some((f, i) => i > 0 && f < h[i - 1]) && h.at(-1) >= 2;
-    }, { timeout: 15000 });
-    const seen = await page.evaluate(() => {
-      const { decoder, core, state } = window.m4dPlayCanvas;
-      return {
-        worker: decoder.constructor.name, fps: decoder.streamInfo().fps, playing: core.playing,
-        stats: { ...core.stats }, history: state.history.slice(),
-        wasmOnPage: performance.getEntriesByType('resource').filter((e) => /m4d_wasm|m4d\.mjs/.test(e.name)).map((e) => e.name),
-      };
-    });
-    assert.equal(seen.worker, 'M4dWorkerDecoder');
-    assert.equal(seen.fps, 30);
-    assert.equal(seen.playing, true);
-    assert.deepEqual(seen.wasmOnPage, [], 'the decoder is loaded by the worker only');
-    const h = seen.history;
-    assert.ok(h.every((f) => Number.isInteger(f) && f >= 0 && f < 6), h.join(' '));
-    for (let i = 1; i < h.length; ++i) {
-      assert.ok(h[i] > h[i - 1] || h[i] === 0, `frame ${h[i]} after ${h[i - 1]}: ${h.join(' ')}`);
-    }
-    assert.ok(seen.stats.shown >= h.length);
+    await checkWorkerPlayback(page, 'm4dPlayCanvas');
   } finally {
     await page.close();
   }

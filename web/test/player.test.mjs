@@ -10,59 +10,28 @@ import { tmpdir } from 'node:os';
 import { createServer } from 'node:http';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { fileURLToPath } from 'node:url';
-import puppeteer from 'puppeteer-core';
 import { serve } from '../tools/serve.mjs';
+import { openPage, psnrAgainstPng as psnrOf, root, startChromium } from './chromium_harness.mjs';
 
-const root = fileURLToPath(new URL('../../', import.meta.url));
-const chromium = process.env.M4D_CHROMIUM || '/usr/bin/chromium';
-let server, browser, base;
+let chromium;
 
 before(async () => {
-  server = await serve(root);
-  base = `http://127.0.0.1:${server.address().port}`;
-  // No GPU here: WebGL2 on SwiftShader, Chromium's CPU rasterizer.
-  browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-  });
+  chromium = await startChromium();
 });
 
 after(async () => {
-  await browser?.close();
-  server?.close();
+  await chromium?.close();
 });
 
 async function openPlayer(query) {
-  const page = await browser.newPage();
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(e.message));
-  await page.goto(`${base}/web/player/?${query}`);
+  const page = await openPage(chromium.browser, `${chromium.base}/web/player/?${query}`);
   await page.waitForFunction(() => window.m4dPlayer && window.m4dPlayer.state.frame, { timeout: 30000 });
-  assert.deepEqual(problems, []);
+  assert.deepEqual(page.problems, []);
   return page;
 }
 
-// PSNR in dB of the page's canvas against a PNG (bytes), decoded by the browser.
-async function psnrAgainstPng(page, png) {
-  return page.evaluate(async (base64) => {
-    const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-    const image = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d');
-    context.drawImage(image, 0, 0);
-    const reference = context.getImageData(0, 0, image.width, image.height).data;
-    const drawn = window.m4dPlayer.readRgb();
-    if (drawn.length !== 3 * image.width * image.height) return -1;
-    let sum = 0;
-    for (let p = 0; p < image.width * image.height; ++p) {
-      for (let c = 0; c < 3; ++c) sum += (drawn[3 * p + c] - reference[4 * p + c]) ** 2;
-    }
-    const mse = sum / drawn.length;
-    return mse === 0 ? Infinity : 10 * Math.log10((255 * 255) / mse);
-  }, png.toString('base64'));
-}
+// PSNR in dB of the player's canvas against a PNG (bytes).
+const psnrAgainstPng = (page, png) => psnrOf(page, png, 'm4dPlayer');
 
 test('draws a frame as the native renderer does (PSNR >= 40 dB)', async (t) => {
   const stream = 'conformance/streams/enc_adaptive_gop.m4d';
