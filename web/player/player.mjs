@@ -14,6 +14,8 @@
 // The orbit camera circles the first frame's dynamic layer as `m4d_play --orbit` does (the
 // world's up is the one the stream states, else -y, OpenCV's convention): drag to turn it,
 // wheel to move closer.
+import { camerasOfTransforms } from '../js/capture_cameras.mjs';
+
 const params = new URLSearchParams(location.search);
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
@@ -57,31 +59,10 @@ async function streamInto(dec, url, onChunk) {
   dec.end();
 }
 
-// transforms.json: one camera per distinct "camera" of its frames; camera-to-world in OpenGL
-// axes, turned into world-to-camera in OpenCV axes as the encoder's loader does.
-function camerasOfTransforms(json) {
-  const cameras = [], seen = new Set();
-  for (const f of json.frames || []) {
-    const name = f.camera || f.file_path;
-    if (seen.has(name)) continue;
-    seen.add(name);
-    const m = f.transform_matrix, sign = [1, -1, -1];
-    const rotation = [], translation = [0, 0, 0];
-    for (let r = 0; r < 3; ++r) {
-      for (let c = 0; c < 3; ++c) {
-        rotation.push(sign[r] * m[c][r]);
-        translation[r] -= sign[r] * m[c][r] * m[c][3];
-      }
-    }
-    const get = (key) => f[key] ?? json[key];
-    cameras.push({ name, width: get('w'), height: get('h'), fx: get('fl_x'), fy: get('fl_y'), cx: get('cx'), cy: get('cy'), rotation, translation });
-  }
-  return cameras;
-}
-
 async function loadCameras(url) {
   const json = await (await fetch(url)).json();
-  const cameras = Array.isArray(json) ? json : camerasOfTransforms(json);
+  // A transforms.json without frames gives no camera here (camerasOfTransforms would throw).
+  const cameras = Array.isArray(json) ? json : camerasOfTransforms(json.frames ? json : { ...json, frames: [] });
   cameras.forEach((c, i) => $('camera').add(new Option(c.name || `capture ${i}`, String(i))));
   state.cameras = cameras;
   const first = params.get('camera');

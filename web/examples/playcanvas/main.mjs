@@ -20,6 +20,7 @@ import * as pc from 'playcanvas';
 import { M4dPlayCanvasAdapter, setCaptureCamera } from '../../adapters/playcanvas_adapter.mjs';
 import { AbrController } from '../../js/abr_controller.mjs';
 import { AbrFrameSource } from '../../js/abr_frame_source.mjs';
+import { camerasOfTransforms } from '../../js/capture_cameras.mjs';
 import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
 import { DecoderFrameSource } from '../../js/splat_frame.mjs';
@@ -94,24 +95,13 @@ const state = { playing: params.get('autoplay') !== '0', ended: false, frame: nu
   looping: false, box: null, updateMs: 0, cameraSet: false };
 if (state.playing) core.play();
 
-// A capture camera of transforms.json (camera-to-world, OpenGL axes) as world-to-camera in
-// OpenCV axes, scaled to the canvas's width and centred.
+// Capture camera `index` of a transforms.json, scaled to the canvas's width and centred.
 async function captureCamera(url, index) {
-  const json = await (await fetch(url)).json();
-  const names = [...new Set((json.frames || []).map((f) => f.camera || f.file_path))];
-  const f = json.frames.find((g) => (g.camera || g.file_path) === names[index]);
-  if (!f) throw new Error(`${url}: no camera ${index}`);
-  const m = f.transform_matrix, sign = [1, -1, -1], rotation = [], translation = [0, 0, 0];
-  for (let r = 0; r < 3; ++r) {
-    for (let c = 0; c < 3; ++c) {
-      rotation.push(sign[r] * m[c][r]);
-      translation[r] -= sign[r] * m[c][r] * m[c][3];
-    }
-  }
-  const get = (key) => f[key] ?? json[key];
-  const scale = canvas.width / get('w');
-  return { fx: get('fl_x') * scale, fy: get('fl_y') * scale, cx: get('cx') * scale,
-    cy: get('cy') * scale + 0.5 * (canvas.height - get('h') * scale), rotation, translation };
+  const c = camerasOfTransforms(await (await fetch(url)).json())[index];
+  if (!c) throw new Error(`${url}: no camera ${index}`);
+  const scale = canvas.width / c.width;
+  return { fx: c.fx * scale, fy: c.fy * scale, cx: c.cx * scale,
+    cy: c.cy * scale + 0.5 * (canvas.height - c.height * scale), rotation: c.rotation, translation: c.translation };
 }
 
 // Without capture cameras: m4d_play's orbit at angle 0 (the player's start) around the first
