@@ -14,6 +14,7 @@
 // The orbit camera circles the first frame's dynamic layer as `m4d_play --orbit` does (the
 // world's up is the one the stream states, else -y, OpenCV's convention): drag to turn it,
 // wheel to move closer.
+import { readRgb } from '../js/canvas_readout.mjs';
 import { camerasOfTransforms } from '../js/capture_cameras.mjs';
 
 const params = new URLSearchParams(location.search);
@@ -269,18 +270,7 @@ window.m4dPlayer = {
   },
   // The canvas as RGB bytes, top row first.
   readRgb() {
-    const gl = canvas.getContext('webgl2');
-    const { width, height } = canvas;
-    const rgba = new Uint8Array(4 * width * height);
-    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
-    const rgb = new Uint8Array(3 * width * height);
-    for (let y = 0; y < height; ++y) {
-      for (let x = 0; x < width; ++x) {
-        const from = 4 * ((height - 1 - y) * width + x), to = 3 * (y * width + x);
-        rgb[to] = rgba[from]; rgb[to + 1] = rgba[from + 1]; rgb[to + 2] = rgba[from + 2];
-      }
-    }
-    return rgb;
+    return readRgb(canvas.getContext('webgl2'), canvas.width, canvas.height);
   },
   loaded: null,
 };

@@ -20,6 +20,7 @@ import * as pc from 'playcanvas';
 import { M4dPlayCanvasAdapter, setCaptureCamera } from '../../adapters/playcanvas_adapter.mjs';
 import { AbrController } from '../../js/abr_controller.mjs';
 import { AbrFrameSource } from '../../js/abr_frame_source.mjs';
+import { readRgb } from '../../js/canvas_readout.mjs';
 import { camerasOfTransforms } from '../../js/capture_cameras.mjs';
 import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
@@ -219,18 +220,9 @@ window.m4dPlayCanvas = {
   },
   // The canvas as RGB bytes, top row first.
   readRgb() {
-    const gl = device.gl, { width, height } = canvas;
-    const rgba = new Uint8Array(4 * width * height);
+    const gl = device.gl;
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
-    const rgb = new Uint8Array(3 * width * height);
-    for (let y = 0; y < height; ++y) {
-      for (let x = 0; x < width; ++x) {
-        const from = 4 * ((height - 1 - y) * width + x), to = 3 * (y * width + x);
-        rgb[to] = rgba[from]; rgb[to + 1] = rgba[from + 1]; rgb[to + 2] = rgba[from + 2];
-      }
-    }
-    return rgb;
+    return readRgb(gl, canvas.width, canvas.height);
   },
   loaded: null,
 };

@@ -25,6 +25,7 @@ import {
 } from '../../adapters/spark_adapter.mjs';
 import { AbrController } from '../../js/abr_controller.mjs';
 import { AbrFrameSource } from '../../js/abr_frame_source.mjs';
+import { readRgb } from '../../js/canvas_readout.mjs';
 import { GopStreamer } from '../../js/gop_streamer.mjs';
 import { PlayerCore } from '../../js/player_core.mjs';
 import { DecoderFrameSource } from '../../js/splat_frame.mjs';
@@ -237,17 +238,7 @@ window.m4dSpark = {
   },
   // The canvas as RGB bytes, top row first.
   readRgb() {
-    const gl = renderer.getContext();
-    const rgba = new Uint8Array(4 * width * height);
-    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, rgba);
-    const rgb = new Uint8Array(3 * width * height);
-    for (let y = 0; y < height; ++y) {
-      for (let x = 0; x < width; ++x) {
-        const from = 4 * ((height - 1 - y) * width + x), to = 3 * (y * width + x);
-        rgb[to] = rgba[from]; rgb[to + 1] = rgba[from + 1]; rgb[to + 2] = rgba[from + 2];
-      }
-    }
-    return rgb;
+    return readRgb(renderer.getContext(), width, height);
   },
   setMeshVisible(visible) { box.visible = visible; },
   loaded: null,
