@@ -26,6 +26,7 @@ export interface PlayCanvasModule {
   [member: string]: unknown;
 }
 
+import type { M4dCamera } from '../js/m4d.mjs';
 import type { SplatFrame } from '../js/splat_frame.mjs';
 export type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
 
@@ -55,16 +56,7 @@ export declare class M4dPlayCanvasAdapter {
 }
 
 /** A capture camera: world to camera, OpenCV axes, in pixels of a width x height image. */
-export interface M4dCaptureCamera {
-  fx: number;
-  fy: number;
-  cx: number;
-  cy: number;
-  /** 9 values, row-major. */
-  rotation: ArrayLike<number>;
-  translation: ArrayLike<number>;
-  /** Default 0.2. */
-  near?: number;
+export interface M4dCaptureCamera extends M4dCamera {
   /** Default 1000. */
   far?: number;
 }

@@ -1,19 +1,13 @@
 // Type declarations of spark_adapter.mjs, the M4D adapter for three.js with Spark. THREE and
 // Spark are passed in as modules; their types are left open here (no dependency on them).
 
+import type { M4dCamera } from '../js/m4d.mjs';
 import type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
 export type { SplatFrame, SplatLayer } from '../js/splat_frame.mjs';
+export { camerasOfTransforms } from '../js/capture_cameras.mjs';
 
 /** A capture camera: OpenCV axes, pixels; world to camera. */
-export interface CaptureCamera {
-  fx: number;
-  fy: number;
-  cx: number;
-  cy: number;
-  /** 9 values, row-major. */
-  rotation: ArrayLike<number>;
-  translation: ArrayLike<number>;
-  near?: number;
+export interface CaptureCamera extends M4dCamera {
   far?: number;
   width?: number;
   height?: number;
@@ -62,5 +56,4 @@ export declare function m4dSparkRendererOptions(): {
   preBlurAmount: number; blurAmount: number; sortRadial: boolean; minAlpha: number; maxStdDev: number; enableLod: boolean;
 };
 export declare function applyCaptureCamera(THREE: any, camera: any, capture: CaptureCamera, width: number, height: number, worldMatrix?: any): void;
-export declare function camerasOfTransforms(json: unknown): Required<Pick<CaptureCamera, 'fx' | 'fy' | 'cx' | 'cy' | 'rotation' | 'translation' | 'width' | 'height' | 'name'>>[];
 export declare function fitCaptureCamera<T extends CaptureCamera & { width: number; height: number }>(camera: T, width: number, height: number): T;

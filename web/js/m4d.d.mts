@@ -11,7 +11,7 @@ export interface M4dLayerView {
   shCoefficients: number;
   /** 3 per Gaussian. */
   positions: Float32Array;
-  /** 3 per Gaussian. */
+  /** 3 per Gaussian (natural log). */
   logScales: Float32Array;
   /** 4 per Gaussian: w, x, y, z (not normalised). */
   rotations: Float32Array;

@@ -1,22 +1,8 @@
 // Type declarations of splat_frame.mjs: owned SplatLayer/SplatFrame copies and conversions.
 import type { M4dFrame, M4dLayerView, M4dStreamInfo } from './m4d.mjs';
 
-/** One layer's Gaussians as coded (fields of M4dLayerView), each array owning its buffer. */
-export interface SplatLayer {
-  count: number;
-  shDegree: number;
-  shCoefficients: number;
-  /** 3 per Gaussian. */
-  positions: Float32Array;
-  /** 3 per Gaussian (natural log). */
-  logScales: Float32Array;
-  /** 4 per Gaussian: w, x, y, z (not normalised). */
-  rotations: Float32Array;
-  /** 1 per Gaussian. */
-  opacityLogits: Float32Array;
-  /** 3 * shCoefficients per Gaussian: [k][r, g, b]. */
-  sh: Float32Array;
-}
+/** One layer's Gaussians as coded (the fields of M4dLayerView), each array owning its buffer. */
+export interface SplatLayer extends M4dLayerView {}
 
 /** A decoded frame handed between threads and to the viewer adapters. */
 export interface SplatFrame {
