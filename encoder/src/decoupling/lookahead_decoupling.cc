@@ -129,6 +129,21 @@ void MergeMeasures(const LookaheadMeasures& step, LookaheadMeasures* all) {
   }
 }
 
+// Lowers each Gaussian's error to the keyframe model's own on the keyframe's views where that is
+// smaller: a Gaussian that fits its own frame is no fitting artefact, however far its content
+// moved from where the fine-tuning could follow it (a thrown ball moves its diameter per frame).
+Status KeepKeyframeFit(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
+                       const RenderSettings& settings, LookaheadMeasures* measures) {
+  std::vector<float> blend, error;
+  M4D_RETURN_IF_ERROR(ErrorWeights(keyframe, keyframe_views, settings, &blend, &error));
+  for (size_t i = 0; i < keyframe.size(); ++i) {
+    if (blend[i] <= 0) continue;
+    const float own = error[i] / blend[i];
+    if (!(measures->error[i] <= own)) measures->error[i] = own;  // NaN: no pixel at t1
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyframe_views,
@@ -168,6 +183,7 @@ Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyf
     }
     MergeMeasures(measures, &result->measures);
   }
+  M4D_RETURN_IF_ERROR(KeepKeyframeFit(keyframe, keyframe_views, settings, &result->measures));
 
   // The counts of the first two steps, for reports.
   const LookaheadMeasures& m = result->measures;

@@ -40,7 +40,9 @@ struct DecouplingThresholds {
 struct LookaheadMeasures {
   std::vector<float> displacement;  // delta_i
   std::vector<float> scale_change;  // |delta s_i|
-  std::vector<float> error;         // E_L1_i; NaN where the Gaussian covered no pixel
+  // E_L1_i (the smallest over the steps and the keyframe's own frame); NaN where the Gaussian
+  // covered no pixel.
+  std::vector<float> error;
   // Share of its blend weight on changed pixels less the views' changed shares (largest over
   // the steps); empty: not measured.
   std::vector<float> change_support;
