@@ -49,10 +49,7 @@ struct StartRun {
   double psnr = 0;  // on the training views
 };
 
-StartRun Train(const Capture& capture, const KeyframeTrainingOptions& options) {
-  StartRun run;
-  GaussianModel model;
-  EXPECT_TRUE(TrainKeyframe(capture, 0, options, nullptr, &model, &run.report).ok());
+double TrainingViewsPsnr(const Capture& capture, const GaussianModel& model) {
   TrainingViews views;
   EXPECT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &views).ok());
   RenderSettings settings;
@@ -60,7 +57,14 @@ StartRun Train(const Capture& capture, const KeyframeTrainingOptions& options) {
   settings.sh_degree = 1;
   EvaluationResult quality;
   EXPECT_TRUE(EvaluateViews(model, views, settings, nullptr, &quality).ok());
-  run.psnr = quality.mean_psnr;
+  return quality.mean_psnr;
+}
+
+StartRun Train(const Capture& capture, const KeyframeTrainingOptions& options) {
+  StartRun run;
+  GaussianModel model;
+  EXPECT_TRUE(TrainKeyframe(capture, 0, options, nullptr, &model, &run.report).ok());
+  run.psnr = TrainingViewsPsnr(capture, model);
   return run;
 }
 
@@ -79,6 +83,10 @@ TEST(KeyframeStartTest, EveryStartTrainsWithoutCollapse) {
       EXPECT_EQ(r.starts.back().name.rfind("random in the cameras' box", 0) == 0,
                 r.starts.size() > 2 || random)
           << what;
+      EXPECT_EQ(r.random_start_schedule,
+                r.starts.back().name.rfind("random in the cameras' box", 0) == 0 &&
+                    strategy == DensificationStrategyKind::kAdaptiveDensityControl)
+          << what;
       // No event removed more than half of the model, and it never fell to a quarter of its
       // largest size.
       EXPECT_LE(r.largest_removal, 0.5) << what;
@@ -90,8 +98,34 @@ TEST(KeyframeStartTest, EveryStartTrainsWithoutCollapse) {
       }
       psnr[random] = run.psnr;
     }
-    EXPECT_GT(psnr[1], psnr[0] - 1.5) << StrategyName(strategy) << " " << psnr[0];
+    // With MCMC the random start ends near the chain's. With adaptive density control the
+    // chain falls through to random points here too, keeping the few the sweep found, and both
+    // take the random start's schedule, so the sweep's points lead by 4 dB at this size; on the
+    // realistic scene at 240x136 the chain's start is the sweep's and the random start ends
+    // 1.3 dB under it (docs/results/2026-11-29-random-start-schedule.md).
+    if (strategy == DensificationStrategyKind::kMcmc) {
+      EXPECT_GT(psnr[1], psnr[0] - 1.5) << StrategyName(strategy) << " " << psnr[0];
+    }
   }
+}
+
+// The random start's schedule (random_start_schedule.h) recovers a random start: the same start
+// trained at the plain short schedule ends well under it.
+TEST(KeyframeStartTest, TheRandomStartsScheduleLiftsARandomStart) {
+  const Capture capture = SparseCaptureWithoutPoints();
+  const KeyframeTrainingOptions options =
+      Options(DensificationStrategyKind::kAdaptiveDensityControl, true);
+  const StartRun scheduled = Train(capture, options);
+  ASSERT_TRUE(scheduled.report.random_start_schedule);
+
+  TrainingViews views;
+  ASSERT_TRUE(LoadTrainingViews(capture, 0, capture.TrainCameras(), &views).ok());
+  GaussianModel initial;
+  ASSERT_TRUE(InitialKeyframeModel(capture, views, options, &initial).ok());
+  KeyframeTrainer plain;
+  ASSERT_TRUE(plain.Init(options, views, std::move(initial)).ok());
+  ASSERT_TRUE(plain.Train().ok());
+  EXPECT_GT(scheduled.psnr, TrainingViewsPsnr(capture, plain.model()) + 1.0);
 }
 
 // A rig too sparse for points seen by 3 views falls through the chain, each start reported.

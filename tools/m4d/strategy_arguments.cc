@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "train/random_start_schedule.h"
+
 namespace m4d {
 
 void AddStrategyOption(CLI::App* command, std::string* name) {
@@ -22,6 +24,12 @@ void PrintTrainingReport(const KeyframeTrainingReport& report) {
   for (const KeyframeStart& s : report.starts) {
     std::printf("%-28s %s: %zu points%s\n", "start", s.name.c_str(), s.points,
                 s.taken ? " (taken)" : ", too few");
+  }
+  if (report.random_start_schedule) {
+    const RandomStartSchedule schedule;
+    std::printf("%-28s the random start's: position and scale rates x%g and x%g, %s\n", "schedule",
+                schedule.position_rate, schedule.scaling_rate,
+                schedule.opacity_reset ? "opacity reset" : "no opacity reset");
   }
   std::printf("%-28s %10s %10s %10s %10s\n", "run, per tenth", "iteration", "Gaussians", "loss",
               "PSNR");

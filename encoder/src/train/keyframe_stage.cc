@@ -7,6 +7,7 @@
 #include "train/photo_consistent_points.h"
 #include "train/point_initialisation.h"
 #include "train/random_start.h"
+#include "train/random_start_schedule.h"
 #include "train/scene_extent.h"
 
 namespace m4d {
@@ -99,7 +100,7 @@ Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& 
   }
   tried->push_back({found.size() > 0 ? "random in the cameras' box, with the points found"
                                      : "random in the cameras' box",
-                    initial->size(), true});
+                    initial->size(), true, true});
   return Status::Ok();
 }
 
@@ -146,8 +147,9 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
   GaussianModel initial;
   std::vector<KeyframeStart> starts;
   M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, views, options, &initial, &starts));
+  const KeyframeTrainingOptions trained = OptionsForStart(options, starts);
   KeyframeTrainer trainer;
-  M4D_RETURN_IF_ERROR(trainer.Init(options, std::move(views), std::move(initial)));
+  M4D_RETURN_IF_ERROR(trainer.Init(trained, std::move(views), std::move(initial)));
   if (observe) {
     while (trainer.iteration() < options.iterations) {
       M4D_RETURN_IF_ERROR(trainer.TrainUntil(trainer.iteration() + kObserveEvery, progress));
@@ -157,6 +159,7 @@ Status TrainKeyframe(const Capture& capture, int frame, const KeyframeTrainingOp
     M4D_RETURN_IF_ERROR(trainer.Train(progress));
   }
   if (report != nullptr) {
+    report->random_start_schedule = TakesRandomStartSchedule(options, starts);
     report->starts = std::move(starts);
     report->tenths = trainer.tenths();
     report->counts = trainer.densify_totals();

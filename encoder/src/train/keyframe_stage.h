@@ -20,6 +20,7 @@ struct KeyframeStart {
   std::string name;
   size_t points = 0;
   bool taken = false;
+  bool random = false;  // points drawn at random (random_start_schedule.h)
 };
 
 // The model keyframe training starts from, the first of a chain that gives enough points
@@ -43,6 +44,7 @@ struct KeyframeTrainingReport {
   std::vector<TrainingTenth> tenths;
   StrategyCounts counts;
   double largest_removal = 0;
+  bool random_start_schedule = false;  // trained with it (random_start_schedule.h)
 };
 
 // Looks at the trainer between iterations (a quality-over-time curve); an error stops the run.

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <utility>
 
+#include "train/random_start_schedule.h"
+
 namespace m4d {
 namespace {
 
@@ -110,14 +112,18 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
 Status LoadSelectionInputs(const Capture& capture, int frame,
                            const KeyframeTrainingOptions& options,
                            const PruneShareSelectionOptions& selection, TrainingViews* views,
-                           GaussianModel* initial) {
+                           GaussianModel* initial, KeyframeTrainingOptions* trained) {
   M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
+  *trained = options;
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), views));
   const int held_out_count = HeldOutCount(views->size(), selection);
   if (held_out_count == 0) return Status::Ok();
   TrainingViews fit, validation;
   SplitViews(*views, ValidationViews(views->cameras, held_out_count), &fit, &validation);
-  return InitialKeyframeModel(capture, fit, options, initial);
+  std::vector<KeyframeStart> starts;
+  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, fit, options, initial, &starts));
+  *trained = OptionsForStart(options, starts);
+  return Status::Ok();
 }
 
 Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
@@ -125,8 +131,10 @@ Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainin
                         const SelectionProgress& progress, PruneShareChoice* choice) {
   TrainingViews views;
   GaussianModel initial;
-  M4D_RETURN_IF_ERROR(LoadSelectionInputs(capture, frame, options, selection, &views, &initial));
-  return SelectPruneShare(views, initial, options, selection, progress, choice);
+  KeyframeTrainingOptions trained;
+  M4D_RETURN_IF_ERROR(
+      LoadSelectionInputs(capture, frame, options, selection, &views, &initial, &trained));
+  return SelectPruneShare(views, initial, trained, selection, progress, choice);
 }
 
 }  // namespace m4d

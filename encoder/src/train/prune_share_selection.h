@@ -88,12 +88,13 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
                         const PruneShareSelectionOptions& selection,
                         const SelectionProgress& progress, PruneShareChoice* choice);
 
-// The capture's training views of `frame`, and the initial model built from the views
-// `selection` does not hold out (an empty model when it holds none out).
+// The capture's training views of `frame`, the initial model built from the views `selection`
+// does not hold out (an empty model when it holds none out), and the options a keyframe trains
+// with from that start (OptionsForStart, random_start_schedule.h).
 Status LoadSelectionInputs(const Capture& capture, int frame,
                            const KeyframeTrainingOptions& options,
                            const PruneShareSelectionOptions& selection, TrainingViews* views,
-                           GaussianModel* initial);
+                           GaussianModel* initial, KeyframeTrainingOptions* trained);
 
 // The same from the capture's frame: loads its training views and the initial model.
 Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,

@@ -62,9 +62,10 @@ Status SelectRateWeight(const Capture& capture, int frame, const KeyframeTrainin
                         const SelectionProgress& progress, RateWeightChoice* choice) {
   TrainingViews views;
   GaussianModel initial;
+  KeyframeTrainingOptions trained;
   M4D_RETURN_IF_ERROR(
-      LoadSelectionInputs(capture, frame, options, selection.held_out, &views, &initial));
-  return SelectRateWeight(views, initial, options, selection, progress, choice);
+      LoadSelectionInputs(capture, frame, options, selection.held_out, &views, &initial, &trained));
+  return SelectRateWeight(views, initial, trained, selection, progress, choice);
 }
 
 }  // namespace m4d
