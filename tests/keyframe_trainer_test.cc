@@ -29,6 +29,7 @@
 #include "train/rate_weight_selection.h"
 #include "train/scene_extent.h"
 #include "train/smoothing_filter_3d.h"
+#include "train/start_size_selection.h"
 
 namespace m4d {
 namespace {
@@ -895,6 +896,77 @@ TEST(PruneShareSelectionTest, TakesTheLargestShareWithinTheBound) {
   EXPECT_EQ(sparse.share, 0.0f);
   EXPECT_TRUE(sparse.validation_cameras.empty());
   EXPECT_TRUE(sparse.trials.empty());
+}
+
+TEST(StartSizeSelectionTest, ScoresThePsnrPlusTheRateTrade) {
+  BranchResult reference, smaller, larger;
+  reference.psnr = smaller.psnr = larger.psnr = 30.0;
+  reference.bytes = 1000;
+  smaller.bytes = 500;
+  larger.bytes = 4000;
+  EXPECT_DOUBLE_EQ(RateAdjustedPsnr(reference, reference, 0.5), 30.0);
+  EXPECT_DOUBLE_EQ(RateAdjustedPsnr(reference, smaller, 0.5), 30.5);
+  EXPECT_DOUBLE_EQ(RateAdjustedPsnr(reference, larger, 0.5), 29.0);
+}
+
+TEST(StartSizeSelectionTest, ChoosesOnlyForASweptStartWithViewsToHoldOut) {
+  Scene scene = MakeScene();
+  const KeyframeTrainingOptions options = TestOptions();
+  const StartSizeSelectionOptions selection;
+  EXPECT_FALSE(ChoosesStartSize(scene.capture, 7, options, selection));  // the capture's points
+  scene.capture.initial_points = PointCloud();
+  EXPECT_TRUE(ChoosesStartSize(scene.capture, 7, options, selection));
+  EXPECT_FALSE(ChoosesStartSize(scene.capture, 5, options, selection));
+  KeyframeTrainingOptions random = options;
+  random.random_initialisation = true;
+  EXPECT_FALSE(ChoosesStartSize(scene.capture, 7, random, selection));
+  StartSizeSelectionOptions one = selection;
+  one.sweep_shares = {1.0f};
+  EXPECT_FALSE(ChoosesStartSize(scene.capture, 7, options, one));
+}
+
+// Each start trains a trunk; the rate trade decides between them, and the chosen start's trunk
+// chooses the prune share exactly as a selection from that start alone does.
+TEST(StartSizeSelectionTest, KeepsTheBestScoringStartsTrunk) {
+  Scene scene = MakeScene();
+  scene.capture.initial_points = PointCloud();
+  KeyframeTrainingOptions options = TestOptions();
+  options.iterations = 600;
+  options.random_points = 2000;
+  StartSizeSelectionOptions selection;
+  selection.sweep_shares = {1.0f, 0.1f};
+  selection.held_out.shares = {0.05f};
+  selection.held_out.max_loss_per_halving_db = 20.0;  // the fewer bytes win
+  StartSizeChoice loose;
+  PruneShareTrunk loose_trunk;
+  ASSERT_TRUE(
+      SelectStartSize(scene.capture, 0, options, selection, nullptr, &loose, &loose_trunk).ok());
+  ASSERT_EQ(loose.trials.size(), 2u);
+  EXPECT_EQ(loose.validation_cameras, ValidationCameras(scene.capture));
+  EXPECT_LT(loose.trials[1].start_points, loose.trials[0].start_points);
+  EXPECT_LT(loose.trials[1].bytes, loose.trials[0].bytes);
+  EXPECT_GT(loose.trials[0].psnr, 15.0);
+  EXPECT_EQ(loose.sweep_share, 0.1f);
+  EXPECT_EQ(loose_trunk.unpruned.psnr, loose.trials[1].psnr);
+
+  selection.held_out.max_loss_per_halving_db = -20.0;  // the more bytes win
+  StartSizeChoice strict;
+  PruneShareTrunk strict_trunk;
+  ASSERT_TRUE(
+      SelectStartSize(scene.capture, 0, options, selection, nullptr, &strict, &strict_trunk).ok());
+  EXPECT_EQ(strict.sweep_share, 1.0f);
+  EXPECT_EQ(strict.trials[1].psnr, loose.trials[1].psnr);  // deterministic trunks
+  EXPECT_EQ(strict_trunk.unpruned.psnr, strict.trials[0].psnr);
+
+  PruneShareChoice from_trunk, alone;
+  ASSERT_TRUE(SelectPruneShare(strict_trunk, selection.held_out, nullptr, &from_trunk).ok());
+  ASSERT_TRUE(
+      SelectPruneShare(scene.capture, 0, options, selection.held_out, nullptr, &alone).ok());
+  ASSERT_EQ(from_trunk.trials.size(), 1u);
+  ASSERT_EQ(alone.trials.size(), 1u);
+  EXPECT_EQ(from_trunk.trials[0].psnr, alone.trials[0].psnr);
+  EXPECT_EQ(from_trunk.trials[0].bytes, alone.trials[0].bytes);
+  EXPECT_EQ(from_trunk.unpruned.psnr, alone.unpruned.psnr);
 }
 
 // The rate term's branches code smaller keyframes; a loose bound takes the largest weight, a

@@ -313,7 +313,10 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"importance_prune_share",
            args.prune.Automatic() ? nlohmann::json("auto")
                                   : nlohmann::json(KeyframeSchedule(args).importance_prune_share)},
-          {"prune_max_loss_per_halving_db", args.prune.Automatic()
+          {"start_share", args.prune.StartAutomatic()
+                              ? nlohmann::json("auto")
+                              : nlohmann::json(KeyframeSchedule(args).sweep_share)},
+          {"prune_max_loss_per_halving_db", args.prune.Automatic() || args.prune.StartAutomatic()
                                                 ? nlohmann::json(args.prune.max_loss_per_halving_db)
                                                 : nlohmann::json()},
           {"min_importance_pixels", KeyframeSchedule(args).min_importance_pixels},
@@ -374,6 +377,7 @@ KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {
   }
   if (args.quantization_aware >= 0) o.quantization_aware_iterations = args.quantization_aware;
   if (!args.prune.Automatic()) o.importance_prune_share = static_cast<float>(args.prune.share);
+  if (!args.prune.StartAutomatic()) o.sweep_share = static_cast<float>(args.prune.sweep_share);
   if (args.prune_below >= 0) o.min_importance_pixels = static_cast<float>(args.prune_below);
   o.random_initialisation = args.random_init;
   ApplyStrategy(args.strategy, &o);
@@ -502,14 +506,20 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   std::vector<uint8_t> stream;
   nlohmann::json extra = {
       {"options", EncodeOptionsJson(args)},
+      {"start_size_selection",
+       choices.trains_first ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
       {"prune_share_selection",
        choices.trains_first ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
       {"rate_weight_selection",
        choices.trains_first ? RateWeightJson(args.keyframe_rate, choices.rate) : nlohmann::json()}};
   if (chunked) {
     nlohmann::json settings = extra["options"];
-    settings["resolved"] = {options.keyframe.importance_prune_share, options.keyframe_rate_weight,
-                            options.fps_num, options.fps_den, capture.frame_count};
+    settings["resolved"] = {options.keyframe.importance_prune_share,
+                            options.keyframe_rate_weight,
+                            options.fps_num,
+                            options.fps_den,
+                            capture.frame_count,
+                            options.keyframe.sweep_share};
     bool done = false;
     nlohmann::json chunk_table;
     M4D_RETURN_IF_ERROR(EncodeChunked(args, capture, options, settings, &progress, report, &stream,

@@ -38,10 +38,15 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
                                EncoderOptions* options, AutomaticChoices* choices) {
   choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
   Status status = Status::Ok();
-  if (CurrentRanks().rank == 0 && choices->trains_first && args.prune.Automatic()) {
-    status =
-        ResolvePruneShare(capture, options->first_frame, FirstKeyframeTraining(*options),
-                          args.prune, &options->keyframe.importance_prune_share, &choices->prune);
+  if (CurrentRanks().rank == 0 && choices->trains_first &&
+      (args.prune.Automatic() || args.prune.StartAutomatic())) {
+    KeyframeTrainingOptions first = FirstKeyframeTraining(*options);
+    KeyframeShareChoice chosen;
+    status = ResolveKeyframeShares(capture, options->first_frame, args.prune, &first, &chosen);
+    options->keyframe.sweep_share = first.sweep_share;
+    options->keyframe.importance_prune_share = first.importance_prune_share;
+    choices->start = chosen.start;
+    choices->prune = chosen.prune;
   }
   if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
       args.keyframe_rate.automatic) {
@@ -53,10 +58,12 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
   }
   if (!AllRanksOk(status.ok()))
     return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 failed") : status;
-  double chosen[2] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight};
-  BroadcastDoubles(chosen, 2);
+  double chosen[3] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight,
+                      options->keyframe.sweep_share};
+  BroadcastDoubles(chosen, 3);
   options->keyframe.importance_prune_share = static_cast<float>(chosen[0]);
   options->keyframe_rate_weight = chosen[1];
+  options->keyframe.sweep_share = static_cast<float>(chosen[2]);
   return Status::Ok();
 }
 

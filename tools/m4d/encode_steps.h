@@ -28,11 +28,12 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
 // What the automatic keyframe settings chose (when the first keyframe is trained here).
 struct AutomaticChoices {
   bool trains_first = false;
+  StartSizeChoice start;
   PruneShareChoice prune;
   RateWeightChoice rate;
 };
 
-// The automatic prune share and keyframe rate weight: an automatic share needs the first
+// The automatic start share, prune share and keyframe rate weight: they need the first
 // keyframe's training, a given keyframe has none. Under MPI rank 0 chooses for every rank.
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices);

@@ -43,6 +43,31 @@ void PrintChoice(const PruneShareChoice& choice, const PruneShareSelectionOption
   std::printf("prune share                  %g\n", static_cast<double>(choice.share));
 }
 
+void PrintStartSize(const StartSizeChoice& choice) {
+  if (choice.trials.empty()) return;
+  std::string cameras;
+  for (int c : choice.validation_cameras) cameras += " " + std::to_string(c);
+  std::printf("start size selection         cameras%s held out, the unpruned branches\n",
+              cameras.c_str());
+  std::printf("  %-16s %8s %10s  %11s  %9s  %9s\n", "run", "start", "Gaussians", "coded",
+              "held out", "score");
+  for (const StartSizeTrial& t : choice.trials) {
+    char run[32];
+    std::snprintf(run, sizeof(run), "sweep share %g", static_cast<double>(t.sweep_share));
+    std::printf("  %-16s %8zu %10zu  %8.1f KB  %6.2f dB  %6.2f dB%s\n", run, t.start_points,
+                t.gaussians, t.bytes / 1000.0, t.psnr, t.score,
+                t.sweep_share == choice.sweep_share ? "  chosen" : "");
+  }
+  std::printf("sweep share                  %g\n", static_cast<double>(choice.sweep_share));
+}
+
+SelectionProgress BarProgress(ProgressBar* bar, const std::string& what) {
+  return [bar, what](const std::string& run, const TrainingProgress& p) {
+    bar->Update(p, what + ", " + run);
+    if (p.iteration == p.iterations) bar->Finish();
+  };
+}
+
 // A share as written on the command line (0.1, not the float's 0.100000001).
 double ShareValue(float share) {
   char text[32];
@@ -53,6 +78,17 @@ double ShareValue(float share) {
 }  // namespace
 
 void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArguments* args) {
+  command
+      ->add_option_function<std::string>(
+          "--start-share",
+          [args](const std::string& value) {
+            args->sweep_share = value == "auto" ? -1.0 : std::stod(value);
+          },
+          "without initial points, ask the photo-consistent sweep for this share of the start's "
+          "points; 'auto' (the default) holds training views out as --prune-share auto does and "
+          "takes the best of 1 and 0.1, each scored by its held-out PSNR plus --prune-max-loss "
+          "dB per halving of the keyframe's bytes (1 with fewer than 6 training views)")
+      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.001, 1.0));
   command
       ->add_option_function<std::string>(
           "--prune-share",
@@ -67,31 +103,40 @@ void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArgumen
       ->check(CLI::IsMember({"auto"}) | m4d::Within(0.0, 0.99));
   command
       ->add_option("--prune-max-loss", args->max_loss_per_halving_db,
-                   "dB of the held-out training views an automatic prune share may cost per "
-                   "halving of the keyframe's bytes")
+                   "dB of the held-out training views an automatic prune share or start share "
+                   "may cost per halving of the keyframe's bytes")
       ->check(m4d::Within(0.0, 10.0))
       ->capture_default_str();
 }
 
-Status ResolvePruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                         const PruneShareArguments& args, float* share, PruneShareChoice* choice) {
-  *choice = PruneShareChoice();
-  if (!args.Automatic()) {
-    *share = static_cast<float>(args.share);
-    return Status::Ok();
-  }
+Status ResolveKeyframeShares(const Capture& capture, int frame, const PruneShareArguments& args,
+                             KeyframeTrainingOptions* options, KeyframeShareChoice* choice) {
+  *choice = KeyframeShareChoice();
+  if (!args.StartAutomatic()) options->sweep_share = static_cast<float>(args.sweep_share);
+  if (!args.Automatic()) options->importance_prune_share = static_cast<float>(args.share);
   PruneShareSelectionOptions selection;
   selection.max_loss_per_halving_db = args.max_loss_per_halving_db;
   ProgressBar bar;
-  M4D_RETURN_IF_ERROR(SelectPruneShare(
-      capture, frame, options, selection,
-      [&](const std::string& run, const TrainingProgress& p) {
-        bar.Update(p, "prune share test, " + run);
-        if (p.iteration == p.iterations) bar.Finish();
-      },
-      choice));
-  PrintChoice(*choice, selection);
-  *share = choice->share;
+  PruneShareTrunk trunk;
+  if (args.StartAutomatic()) {
+    StartSizeSelectionOptions start;
+    start.held_out = selection;
+    M4D_RETURN_IF_ERROR(SelectStartSize(capture, frame, *options, start,
+                                        BarProgress(&bar, "start size test"), &choice->start,
+                                        &trunk));
+    PrintStartSize(choice->start);
+    options->sweep_share = choice->start.sweep_share;
+  }
+  if (!args.Automatic()) return Status::Ok();
+  const SelectionProgress progress = BarProgress(&bar, "prune share test");
+  if (choice->start.trials.empty()) {
+    M4D_RETURN_IF_ERROR(
+        SelectPruneShare(capture, frame, *options, selection, progress, &choice->prune));
+  } else {
+    M4D_RETURN_IF_ERROR(SelectPruneShare(trunk, selection, progress, &choice->prune));
+  }
+  PrintChoice(choice->prune, selection);
+  options->importance_prune_share = choice->prune.share;
   return Status::Ok();
 }
 
@@ -110,6 +155,22 @@ nlohmann::json PruneShareJson(const PruneShareArguments& args, const PruneShareC
           {"unpruned", trial(choice.unpruned)},
           {"trials", trials},
           {"share", ShareValue(choice.share)}};
+}
+
+nlohmann::json StartSizeJson(const PruneShareArguments& args, const StartSizeChoice& choice) {
+  if (!args.StartAutomatic()) return nullptr;
+  nlohmann::json trials = nlohmann::json::array();
+  for (const StartSizeTrial& t : choice.trials) {
+    trials.push_back({{"sweep_share", ShareValue(t.sweep_share)},
+                      {"start_points", t.start_points},
+                      {"gaussians", t.gaussians},
+                      {"bytes", t.bytes},
+                      {"psnr", t.psnr},
+                      {"score", t.score}});
+  }
+  return {{"validation_cameras", choice.validation_cameras},
+          {"trials", trials},
+          {"sweep_share", ShareValue(choice.sweep_share)}};
 }
 
 }  // namespace m4d

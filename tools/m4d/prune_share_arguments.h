@@ -1,5 +1,8 @@
-// --prune-share and --prune-max-loss, shared by m4d train, encode and rd: the share importance
-// pruning removes from a keyframe, given or chosen per capture (prune_share_selection.h).
+// --start-share, --prune-share and --prune-max-loss, shared by m4d train, encode and rd: the
+// share of the photo-consistent sweep a keyframe without points starts from
+// (start_size_selection.h) and the share importance pruning removes from it
+// (prune_share_selection.h), each given or chosen per capture. They are chosen together: the
+// chosen start's trunk is the prune share's.
 #ifndef M4D_TOOLS_M4D_PRUNE_SHARE_ARGUMENTS_H_
 #define M4D_TOOLS_M4D_PRUNE_SHARE_ARGUMENTS_H_
 
@@ -10,25 +13,38 @@
 #include "dataset/capture.h"
 #include "train/keyframe_trainer.h"
 #include "train/prune_share_selection.h"
+#include "train/start_size_selection.h"
 
 namespace m4d {
 
 struct PruneShareArguments {
-  double share = -1;  // < 0: chosen per capture ("auto")
+  double share = -1;        // < 0: chosen per capture ("auto")
+  double sweep_share = -1;  // < 0: chosen per capture ("auto")
   double max_loss_per_halving_db = PruneShareSelectionOptions().max_loss_per_halving_db;
   bool Automatic() const { return share < 0; }
+  bool StartAutomatic() const { return sweep_share < 0; }
 };
 
-// Adds both options to a command (`what` says which trainings the share applies to).
+// What the selections chose and tried.
+struct KeyframeShareChoice {
+  StartSizeChoice start;
+  PruneShareChoice prune;
+};
+
+// Adds the three options to a command (`what` says which trainings the prune share applies to).
 void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArguments* args);
 
-// The share for a keyframe of `frame` trained with `options`: the given one, or the selection's
-// (with progress on stderr and its table on stdout; `choice` holds its trials).
-Status ResolvePruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
-                         const PruneShareArguments& args, float* share, PruneShareChoice* choice);
+// The sweep share and the prune share for a keyframe of `frame` trained with `options` (whose
+// sweep_share and importance_prune_share are replaced): the given ones, or the selections'
+// (with progress on stderr and their tables on stdout; `choice` holds their trials).
+Status ResolveKeyframeShares(const Capture& capture, int frame, const PruneShareArguments& args,
+                             KeyframeTrainingOptions* options, KeyframeShareChoice* choice);
 
-// What a report records of the selection (null when the share was given).
+// What a report records of the prune share's selection (null when the share was given).
 nlohmann::json PruneShareJson(const PruneShareArguments& args, const PruneShareChoice& choice);
+
+// What a report records of the start size's selection (null when the share was given).
+nlohmann::json StartSizeJson(const PruneShareArguments& args, const StartSizeChoice& choice);
 
 }  // namespace m4d
 

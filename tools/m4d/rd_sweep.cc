@@ -118,13 +118,19 @@ Status ReadPoint(const std::string& json_path, RdPoint* point) {
 }
 
 // The share an earlier sweep chose (PrepareSharedKeyframe).
-Status ReadPruneShare(const std::string& path, double* share) {
+Status ReadPruneShare(const std::string& path, double* share, double* sweep_share) {
   std::ifstream file(path);
   double value = -1;
   if (!(file >> value) || !(value >= 0.0 && value < 1.0)) {
     return Status(M4D_ERR_INVALID_ARG, path + ": not a prune share");
   }
   *share = value;
+  // Files of sweeps before the start share hold the prune share alone: those started full.
+  double sweep = 1.0;
+  if (file >> sweep && !(sweep > 0.0 && sweep <= 1.0)) {
+    return Status(M4D_ERR_INVALID_ARG, path + ": not a start share");
+  }
+  *sweep_share = sweep;
   return Status::Ok();
 }
 
@@ -179,24 +185,27 @@ Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
   }
   if (!args->keyframe_ply.empty()) return Status::Ok();
   const std::string path = (std::filesystem::path(out.dir) / "keyframe.ply").string();
-  // An automatic prune share is chosen once, with the keyframe, and kept beside it for --reuse.
+  // Automatic shares are chosen once, with the keyframe, and kept beside it for --reuse.
   const std::string share_path = path + ".prune_share";
-  const bool automatic = args->prune.Automatic();
+  const bool automatic = args->prune.Automatic() || args->prune.StartAutomatic();
   if (out.reuse && std::filesystem::exists(path) &&
       (!automatic || std::filesystem::exists(share_path))) {
-    if (automatic) M4D_RETURN_IF_ERROR(ReadPruneShare(share_path, &args->prune.share));
+    if (automatic) {
+      M4D_RETURN_IF_ERROR(ReadPruneShare(share_path, &args->prune.share, &args->prune.sweep_share));
+    }
   } else {
     Capture capture;
     M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
-    float share = 0;
-    PruneShareChoice choice;
-    M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, args->encoder.first_frame,
-                                          SweepKeyframeTraining(*args), args->prune, &share,
-                                          &choice));
-    args->prune.share = share;
+    KeyframeTrainingOptions options = SweepKeyframeTraining(*args);
+    KeyframeShareChoice choice;
+    M4D_RETURN_IF_ERROR(
+        ResolveKeyframeShares(capture, args->encoder.first_frame, args->prune, &options, &choice));
+    args->prune.share = options.importance_prune_share;
+    args->prune.sweep_share = options.sweep_share;
     M4D_RETURN_IF_ERROR(TrainToPly(capture, args->encoder.first_frame, *args, path));
     if (automatic) {
-      const std::string text = std::to_string(share) + "\n";
+      const std::string text =
+          std::to_string(args->prune.share) + "\n" + std::to_string(args->prune.sweep_share) + "\n";
       M4D_RETURN_IF_ERROR(WriteFileAtomically(
           share_path, reinterpret_cast<const uint8_t*>(text.data()), text.size()));
     }

@@ -45,7 +45,7 @@ struct SweepOutput {
 void AddSweepOutputOptions(CLI::App* command, SweepOutput* out);
 
 // Trains the first keyframe once into dir/keyframe.ply and points args at it, unless
-// args->keyframe_ply is already set; an automatic prune share is chosen first and given to
+// args->keyframe_ply is already set; automatic start and prune shares are chosen first and given to
 // every rate point (their retraining prunes it too), kept in dir/keyframe.ply.prune_share.
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args);
 

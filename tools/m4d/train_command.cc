@@ -157,9 +157,8 @@ Status RunTrain(const TrainArguments& args) {
   M4D_RETURN_IF_ERROR(TrainingRate(args, &options));
   options.threads = args.threads;
   options.seed = args.seed;
-  PruneShareChoice choice;
-  M4D_RETURN_IF_ERROR(ResolvePruneShare(capture, args.frame, options, args.prune,
-                                        &options.importance_prune_share, &choice));
+  KeyframeShareChoice choice;
+  M4D_RETURN_IF_ERROR(ResolveKeyframeShares(capture, args.frame, args.prune, &options, &choice));
   RateWeightArguments rate = args.rate;
   rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
   RateWeightChoice rate_choice;

@@ -1,6 +1,7 @@
 #include "train/keyframe_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "train/background_shell.h"
@@ -78,10 +79,13 @@ Status ChainOfStarts(const TrainingViews& views, const KeyframeTrainingOptions& 
   const size_t enough = std::min(kMinStartPoints, std::max<size_t>(start_points / 2, 1));
   PointCloud found;  // the most points a sweep found, kept in the random start
   if (!options.random_initialisation) {
+    const size_t asked = std::max<size_t>(
+        static_cast<size_t>(std::lround(static_cast<double>(start_points) * options.sweep_share)),
+        1);
     for (int min_views : {3, 2}) {
       PointCloud points;
-      M4D_RETURN_IF_ERROR(PhotoConsistentStart(views, options, start_points, min_views, &points));
-      const bool taken = points.size() >= enough;
+      M4D_RETURN_IF_ERROR(PhotoConsistentStart(views, options, asked, min_views, &points));
+      const bool taken = points.size() >= std::min(enough, asked);
       tried->push_back({"photo-consistent points, " + std::to_string(min_views) + " views",
                         points.size(), taken});
       if (taken) return InitialiseFromPoints(points, init, initial);

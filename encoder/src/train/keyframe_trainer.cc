@@ -114,6 +114,7 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (!(o.camera_colour_learning_rate >= 0.0f && o.camera_colour_learning_rate <= 1.0f)) {
     return OptionError("camera colour learning rate");
   }
+  if (!(o.sweep_share > 0.0f && o.sweep_share <= 1.0f)) return OptionError("sweep share");
   if (!(o.max_gaussians_per_pixel >= 0.0f) || !std::isfinite(o.max_gaussians_per_pixel)) {
     return OptionError("Gaussians per pixel");
   }

@@ -126,6 +126,9 @@ struct KeyframeTrainingOptions {
   // part of the cameras' box two views see (random_initialisation; random_start.h).
   size_t random_points = 100000;
   bool random_initialisation = false;
+  // The photo-consistent sweep is asked for this share of the start's points. Fewer, sparser
+  // points help some captures and cost others (start_size_selection.h chooses it per capture).
+  float sweep_share = 1.0f;
   // Without points, this many points spread over the background shell (background_shell.h) join the
   // start, those no two views see dropped, at most a quarter of the start (0: none). Short()
   // spreads 20000: on Panoptic basketball the dome wall then stands where the held-out cameras see

@@ -70,13 +70,14 @@ KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options
   return o;
 }
 
-Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial,
-                        const KeyframeTrainingOptions& options,
-                        const PruneShareSelectionOptions& selection,
-                        const SelectionProgress& progress, PruneShareChoice* choice) {
-  *choice = PruneShareChoice();
+Status TrainPruneShareTrunk(const TrainingViews& views, const GaussianModel& initial,
+                            const KeyframeTrainingOptions& options,
+                            const PruneShareSelectionOptions& selection, const std::string& run,
+                            const SelectionProgress& progress, PruneShareTrunk* trunk) {
   const int held_out_count = HeldOutCount(views.size(), selection);
-  if (held_out_count == 0) return Status::Ok();
+  if (held_out_count == 0) {
+    return Status(M4D_ERR_INVALID_ARG, "prune share selection: too few views to hold one out");
+  }
   KeyframeTrainingOptions schedule = ShortenedSchedule(options, selection.schedule_fraction);
   if (schedule.densify_until <= 1 || schedule.densify_until > schedule.iterations) {
     return Status(M4D_ERR_INVALID_ARG, "prune share selection: the schedule never prunes");
@@ -86,20 +87,26 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
       schedule.iterations,
       schedule.densify_until + ScaledCount(schedule.iterations, selection.branch_fraction));
   // Shared until the iteration before the prune; each branch is a copy from there.
-  TrainingViews validation;
-  KeyframeTrainer trunk;
   M4D_RETURN_IF_ERROR(TrainTrunk(views, ValidationViews(views.cameras, held_out_count), initial,
-                                 schedule, schedule.densify_until - 1, "unpruned", progress,
-                                 &choice->validation_cameras, &validation, &trunk));
-  KeyframeTrainer unpruned = trunk;
-  M4D_RETURN_IF_ERROR(RunBranch("unpruned", validation, progress, &unpruned, &choice->unpruned));
-  choice->unpruned.share = 0.0f;
+                                 schedule, schedule.densify_until - 1, run, progress,
+                                 &trunk->validation_cameras, &trunk->validation, &trunk->trainer));
+  KeyframeTrainer unpruned = trunk->trainer;
+  M4D_RETURN_IF_ERROR(RunBranch(run, trunk->validation, progress, &unpruned, &trunk->unpruned));
+  trunk->unpruned.share = 0.0f;
+  return Status::Ok();
+}
+
+Status SelectPruneShare(const PruneShareTrunk& trunk, const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice) {
+  *choice = PruneShareChoice();
+  choice->validation_cameras = trunk.validation_cameras;
+  choice->unpruned = trunk.unpruned;
   for (float share : selection.shares) {
-    KeyframeTrainer branch = trunk;
+    KeyframeTrainer branch = trunk.trainer;
     branch.SetImportancePruneShare(share);
     PruneShareTrial trial;
     trial.share = share;
-    M4D_RETURN_IF_ERROR(RunBranch(ShareRun(share), validation, progress, &branch, &trial));
+    M4D_RETURN_IF_ERROR(RunBranch(ShareRun(share), trunk.validation, progress, &branch, &trial));
     choice->trials.push_back(trial);
     if (choice->unpruned.psnr - trial.psnr <= AllowedLoss(choice->unpruned, trial, selection)) {
       choice->share = share;
@@ -109,21 +116,40 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
   return Status::Ok();
 }
 
+Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial,
+                        const KeyframeTrainingOptions& options,
+                        const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice) {
+  *choice = PruneShareChoice();
+  if (HeldOutCount(views.size(), selection) == 0) return Status::Ok();
+  PruneShareTrunk trunk;
+  M4D_RETURN_IF_ERROR(
+      TrainPruneShareTrunk(views, initial, options, selection, "unpruned", progress, &trunk));
+  return SelectPruneShare(trunk, selection, progress, choice);
+}
+
+Status HeldOutStart(const Capture& capture, const TrainingViews& views,
+                    const KeyframeTrainingOptions& options,
+                    const PruneShareSelectionOptions& selection, GaussianModel* initial,
+                    KeyframeTrainingOptions* trained) {
+  *trained = options;
+  const int held_out_count = HeldOutCount(views.size(), selection);
+  if (held_out_count == 0) return Status::Ok();
+  TrainingViews fit, validation;
+  SplitViews(views, ValidationViews(views.cameras, held_out_count), &fit, &validation);
+  std::vector<KeyframeStart> starts;
+  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, fit, options, initial, &starts));
+  *trained = OptionsForStart(options, starts);
+  return Status::Ok();
+}
+
 Status LoadSelectionInputs(const Capture& capture, int frame,
                            const KeyframeTrainingOptions& options,
                            const PruneShareSelectionOptions& selection, TrainingViews* views,
                            GaussianModel* initial, KeyframeTrainingOptions* trained) {
   M4D_RETURN_IF_ERROR(ValidateTrainingOptions(options));
-  *trained = options;
   M4D_RETURN_IF_ERROR(LoadTrainingViews(capture, frame, capture.TrainCameras(), views));
-  const int held_out_count = HeldOutCount(views->size(), selection);
-  if (held_out_count == 0) return Status::Ok();
-  TrainingViews fit, validation;
-  SplitViews(*views, ValidationViews(views->cameras, held_out_count), &fit, &validation);
-  std::vector<KeyframeStart> starts;
-  M4D_RETURN_IF_ERROR(InitialKeyframeModel(capture, fit, options, initial, &starts));
-  *trained = OptionsForStart(options, starts);
-  return Status::Ok();
+  return HeldOutStart(capture, *views, options, selection, initial, trained);
 }
 
 Status SelectPruneShare(const Capture& capture, int frame, const KeyframeTrainingOptions& options,

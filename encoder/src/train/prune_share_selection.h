@@ -80,6 +80,28 @@ int HeldOutCount(int views, const PruneShareSelectionOptions& selection);
 // positive), without quantization-aware iterations or importance pruning by share.
 KeyframeTrainingOptions ShortenedSchedule(const KeyframeTrainingOptions& options, double fraction);
 
+// The selection's shared part: the shortened schedule, trained from a start on all views but
+// the held-out ones to the iteration before the prune, and its branch without a prune. Each
+// candidate share continues a copy of `trainer`.
+struct PruneShareTrunk {
+  KeyframeTrainer trainer;
+  TrainingViews validation;             // the held-out views
+  std::vector<int> validation_cameras;  // their capture indices
+  PruneShareTrial unpruned;
+};
+
+// Trains `trunk` from `initial` (built without the held-out views, as HeldOutStart builds it)
+// with `options` on `views`, its progress named `run`. Needs held-out views
+// (HeldOutCount(views.size(), selection) > 0).
+Status TrainPruneShareTrunk(const TrainingViews& views, const GaussianModel& initial,
+                            const KeyframeTrainingOptions& options,
+                            const PruneShareSelectionOptions& selection, const std::string& run,
+                            const SelectionProgress& progress, PruneShareTrunk* trunk);
+
+// Chooses the share from `trunk`: the first candidate whose branch is within the bound.
+Status SelectPruneShare(const PruneShareTrunk& trunk, const PruneShareSelectionOptions& selection,
+                        const SelectionProgress& progress, PruneShareChoice* choice);
+
 // Chooses the share for a keyframe trained with `options` on `views`; `initial` is the model
 // to start from, built without the held-out views (ValidationViews) as InitialKeyframeModel
 // builds it. progress may be null.
@@ -88,9 +110,15 @@ Status SelectPruneShare(const TrainingViews& views, const GaussianModel& initial
                         const PruneShareSelectionOptions& selection,
                         const SelectionProgress& progress, PruneShareChoice* choice);
 
-// The capture's training views of `frame`, the initial model built from the views `selection`
-// does not hold out (an empty model when it holds none out), and the options a keyframe trains
-// with from that start (OptionsForStart, random_start_schedule.h).
+// The initial model built from the `views` that `selection` does not hold out (an empty model
+// when it holds none out), and the options a keyframe trains with from that start
+// (OptionsForStart, random_start_schedule.h).
+Status HeldOutStart(const Capture& capture, const TrainingViews& views,
+                    const KeyframeTrainingOptions& options,
+                    const PruneShareSelectionOptions& selection, GaussianModel* initial,
+                    KeyframeTrainingOptions* trained);
+
+// The capture's training views of `frame`, and HeldOutStart's model and options.
 Status LoadSelectionInputs(const Capture& capture, int frame,
                            const KeyframeTrainingOptions& options,
                            const PruneShareSelectionOptions& selection, TrainingViews* views,
