@@ -3,22 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <utility>
 
 #include "train/random_start_schedule.h"
 
 namespace m4d {
-namespace {
-
-std::string ShareRun(float share) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "share %g", static_cast<double>(share));
-  return text;
-}
-
-}  // namespace
 
 double AllowedLoss(const PruneShareTrial& unpruned, const PruneShareTrial& pruned,
                    const PruneShareSelectionOptions& selection) {
@@ -106,7 +96,8 @@ Status SelectPruneShare(const PruneShareTrunk& trunk, const PruneShareSelectionO
     branch.SetImportancePruneShare(share);
     PruneShareTrial trial;
     trial.share = share;
-    M4D_RETURN_IF_ERROR(RunBranch(ShareRun(share), trunk.validation, progress, &branch, &trial));
+    M4D_RETURN_IF_ERROR(
+        RunBranch(BranchName("share", share), trunk.validation, progress, &branch, &trial));
     choice->trials.push_back(trial);
     if (choice->unpruned.psnr - trial.psnr <= AllowedLoss(choice->unpruned, trial, selection)) {
       choice->share = share;

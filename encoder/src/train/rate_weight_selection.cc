@@ -1,18 +1,8 @@
 #include "train/rate_weight_selection.h"
 
-#include <cstdio>
 #include <string>
 
 namespace m4d {
-namespace {
-
-std::string WeightRun(double weight) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "rate weight %g", weight);
-  return text;
-}
-
-}  // namespace
 
 Status SelectRateWeight(const TrainingViews& views, const GaussianModel& initial,
                         const KeyframeTrainingOptions& options,
@@ -46,7 +36,8 @@ Status SelectRateWeight(const TrainingViews& views, const GaussianModel& initial
     branch.SetRateWeight(weight);
     RateWeightTrial trial;
     trial.weight = weight;
-    M4D_RETURN_IF_ERROR(RunBranch(WeightRun(weight), validation, progress, &branch, &trial));
+    M4D_RETURN_IF_ERROR(
+        RunBranch(BranchName("rate weight", weight), validation, progress, &branch, &trial));
     choice->trials.push_back(trial);
     if (choice->without.psnr - trial.psnr <=
         AllowedLoss(choice->without, trial, held.max_loss_per_halving_db)) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "common/byte_writer.h"
@@ -59,6 +60,12 @@ Status RunBranch(const std::string& run, const TrainingViews& validation,
   M4D_RETURN_IF_ERROR(WriteGaussianSet(set, trainer->options().quantization, &writer));
   result->bytes = bytes.size();
   return Status::Ok();
+}
+
+std::string BranchName(const char* label, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%s %g", label, value);
+  return text;
 }
 
 int ScaledCount(int count, double fraction) {

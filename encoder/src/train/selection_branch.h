@@ -47,6 +47,9 @@ Status TrainTrunk(const TrainingViews& views, const std::vector<int>& held_out,
 Status RunBranch(const std::string& run, const TrainingViews& validation,
                  const SelectionProgress& progress, KeyframeTrainer* trainer, BranchResult* result);
 
+// A branch's name in progress lines: `label` and the candidate's value ("share 0.1").
+std::string BranchName(const char* label, double value);
+
 // `count` scaled by `fraction`, at least 1 where it was positive.
 int ScaledCount(int count, double fraction);
 

@@ -1,20 +1,10 @@
 #include "train/start_size_selection.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <utility>
 
 namespace m4d {
-namespace {
-
-std::string StartRun(float share) {
-  char text[48];
-  std::snprintf(text, sizeof(text), "sweep share %g", static_cast<double>(share));
-  return text;
-}
-
-}  // namespace
 
 bool ChoosesStartSize(const Capture& capture, int views, const KeyframeTrainingOptions& options,
                       const StartSizeSelectionOptions& selection) {
@@ -53,7 +43,8 @@ Status SelectStartSize(const Capture& capture, int frame, const KeyframeTraining
         HeldOutStart(capture, views, candidate, selection.held_out, &initial, &trained));
     PruneShareTrunk trained_trunk;
     M4D_RETURN_IF_ERROR(TrainPruneShareTrunk(views, initial, trained, selection.held_out,
-                                             StartRun(share), progress, &trained_trunk));
+                                             BranchName("sweep share", share), progress,
+                                             &trained_trunk));
     StartSizeTrial trial;
     static_cast<BranchResult&>(trial) = trained_trunk.unpruned;
     trial.sweep_share = share;
