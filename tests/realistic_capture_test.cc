@@ -1,7 +1,8 @@
 // The encoder's decisions on the realistic variant of the built-in scene (sensor noise, JPEG,
 // per-camera exposure and white balance, lens distortion and a left-handed calibration, a
 // sparse rig of 3 training cameras, a swaying plant and a flickering light), at a small size:
-// what real captures broke (README, "What real captures bring").
+// what real captures broke (docs/results/2026-11-30-readme-notebook.md, "What real captures
+// bring").
 #include <gtest/gtest.h>
 
 #include <cmath>

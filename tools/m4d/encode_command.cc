@@ -67,7 +67,7 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
           ->capture_default_str();
   cmd->add_option("--rate-point", a->rate_point,
                   "named rate point r1 (fewest bytes) .. r5: lambda_2 = 5e-4, 3e-4, 2e-4, "
-                  "1e-4, 5e-5, with tau_g and bit depths (README)")
+                  "1e-4, 5e-5, with tau_g and bit depths (docs/encoder.md)")
       ->check(RatePointName())
       ->excludes(lambda);
   cmd->add_option("--sh-degree", o.sh_degree, "SH degree of the stream")
@@ -114,7 +114,7 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->check(m4d::Positive())
       ->capture_default_str();
   cmd->add_option("--tau-delta", o.decoupling.thresholds.displacement,
-                  "decoupling: projected displacement threshold (our units, see the README)")
+                  "decoupling: projected displacement threshold (our units, see docs/encoder.md)")
       ->check(m4d::Finite())
       ->capture_default_str();
   cmd->add_option("--tau-s", o.decoupling.thresholds.scale_change,

@@ -42,7 +42,8 @@ struct MotionEstimationOptions {
   // 100 left the grid under-trained (each of Panoptic's 27 views seen 4 times): frame 5 of the
   // run above reached 29.58 dB with 100 iterations, 30.33 dB with 400. With 130 the frames late
   // in a GOP drifted 0.10-0.17 dB below 400's; 200 with the paper's lambda_2 keeps every frame
-  // within 0.1 dB of 400 at the same bytes, in half the time (README "Faster inter frames").
+  // within 0.1 dB of 400 at the same bytes, in half the time
+  // (docs/results/2026-11-30-readme-notebook.md, "Faster inter frames").
   int iterations = 200;
   int views_per_step = 1;           // training views rendered for each step (their mean loss)
   float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)

@@ -97,8 +97,8 @@ struct EncoderOptions {
   MotionEstimationOptions motion;
   // The first inter frame of a GOP also trains the MLP, which every later frame of the GOP
   // uses: 300 steps there and 200 on the others, with the paper's lambda_2, make the bytes
-  // and PSNR of 300 and 400 (README "Faster inter frames"; 150 there lost 0.02-0.05 dB more
-  // over the sequence).
+  // and PSNR of 300 and 400 (docs/results/2026-11-30-readme-notebook.md, "Faster inter frames"; 150
+  // there lost 0.02-0.05 dB more over the sequence).
   int first_motion_iterations = 300;
   // The motion rate weight falls by this share of lambda_2 per inter frame along a GOP, to
   // kMinMotionRateShare of it (pipeline/motion_rate_schedule.h; 0: constant, the paper's).
@@ -109,7 +109,8 @@ struct EncoderOptions {
   // raises the training views' mean PSNR by at least this many dB; otherwise its bytes would
   // buy nothing. Replicas of dynamic Gaussians (the paper's candidates) cannot reach content
   // that appears away from the moving parts: on the default scene, where the ball appears,
-  // they cost 0.6 to 5.7 KB per frame for -0.24 to +0.16 dB (README).
+  // they cost 0.6 to 5.7 KB per frame for -0.24 to +0.16 dB
+  // (docs/results/2026-11-30-readme-notebook.md, "Compensation as a mode decision").
   double compensation_min_gain = 0.1;
   // The decision is also taken early (CompensationOptions::probe_iteration): a compensation
   // whose gain is on course to stay under compensation_min_gain ends its training there and is

@@ -5,8 +5,8 @@
 // to 15.6 KB on its ninth); with 130 steps the grid stayed at 9-11 KB. A weight that falls
 // along the GOP spends those bits again. Measured with 130 steps, it brought a GOP's middle
 // frames closer to the 400-step encoder's for 1-2 % more bytes, but not reliably its last
-// frame; 200 steps with the paper's lambda_2 did, so it is off by default (README "Longer
-// GOPs").
+// frame; 200 steps with the paper's lambda_2 did, so it is off by default
+// (docs/results/2026-11-30-readme-notebook.md, "Longer GOPs").
 #ifndef M4D_ENCODER_PIPELINE_MOTION_RATE_SCHEDULE_H_
 #define M4D_ENCODER_PIPELINE_MOTION_RATE_SCHEDULE_H_
 

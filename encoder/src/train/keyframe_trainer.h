@@ -145,11 +145,11 @@ struct KeyframeTrainingOptions {
   // iterations of size pruning; position decay over 7000 iterations; SH degree up every 233
   // iterations (1000 x 7000 / 30000, full degree at 10% of the run as in the reference);
   // at most 1 million Gaussians, and at most a quarter of a Gaussian per training pixel.
-  // The quarter was measured (README, "Densification is bounded by the views' pixels"): on
-  // the realistic scene's 3 views of 320x240 the unbounded keyframe reached 0.56 Gaussians
-  // per pixel; bounded, it has half the Gaussians and 0.27 dB more on its held-out view, while
-  // the default scene's 15 views (0.16 per pixel) are left as they were. No importance
-  // pruning by share: the share a capture affords is chosen per capture
+  // The quarter was measured (docs/results/2026-11-30-readme-notebook.md, "Densification is bounded
+  // by the views' pixels"): on the realistic scene's 3 views of 320x240 the unbounded keyframe
+  // reached 0.56 Gaussians per pixel; bounded, it has half the Gaussians and 0.27 dB more on its
+  // held-out view, while the default scene's 15 views (0.16 per pixel) are left as they were. No
+  // importance pruning by share: the share a capture affords is chosen per capture
   // (prune_share_selection.h), not by the schedule. The last quarter of the run is
   // quantization-aware (at `quantization`, which the encoder sets to its rate point's keyframe
   // bits). The same proportions at another length (Short() is Short(7000)): densification from

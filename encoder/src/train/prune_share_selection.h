@@ -3,11 +3,11 @@
 // constant. A 0.1 share halves the default scene's keyframe for 0.26 dB on its held-out
 // camera, yet costs Panoptic basketball 0.57 dB at 0.05 and a sparse rig 0.27 dB at 0.01; and
 // the training views cannot tell these apart (they lose least where the held-out camera loses
-// most: README, "Keyframes pruned by importance"). So training views are held out (one in ten,
-// at least one; one view alone measured Panoptic's differences with 0.3 dB of noise): the
-// schedule, shortened, runs on the others to where pruning happens; from there one branch
-// goes on unpruned and one per candidate share, largest first. The first candidate whose
-// held-out views lose at most max_loss_per_halving_db for every halving of the keyframe's
+// most: docs/results/2026-11-30-readme-notebook.md, "Keyframes pruned by importance"). So training
+// views are held out (one in ten, at least one; one view alone measured Panoptic's differences with
+// 0.3 dB of noise): the schedule, shortened, runs on the others to where pruning happens; from
+// there one branch goes on unpruned and one per candidate share, largest first. The first candidate
+// whose held-out views lose at most max_loss_per_halving_db for every halving of the keyframe's
 // coded bytes (against the unpruned branch) is the share. The bound is a rate trade: the rate
 // points trade about 3 dB of the stream per halving of its bytes, so a share within 0.5 dB
 // per halving of the keyframe is the cheaper way to the same bytes. The held-out views
