@@ -1,9 +1,8 @@
-// Where a view changed between two frames by more than its sensor noise explains: the test
-// video codecs make before they spend motion on a block. Real captures differ everywhere
-// from frame to frame (sensor noise and compression: 39-40 dB PSNR between consecutive
-// frames of the Panoptic and classroom captures where no person is), so a Gaussian that
-// "moves" in the lookahead where the images did not change has fitted noise or an
-// under-constrained direction, not motion.
+// Where a view changed between two frames by more than its sensor noise explains: the test video
+// codecs make before they spend motion on a block. Real captures differ everywhere from frame to
+// frame (sensor noise and compression, even where no person is:
+// docs/results/2026-11-30-comment-measurements.md), so a Gaussian that "moves" in the lookahead
+// where the images did not change has fitted noise or an under-constrained direction, not motion.
 //
 // Per pixel d = mean over channels of |after - before|, box-averaged over a square of side
 // 2 * radius + 1 (noise averages out, motion does not). The noise level is the median of the

@@ -11,8 +11,8 @@
 namespace m4d {
 namespace {
 
-// Lloyd iterations: the index entropy and the PSNR of the default scene's keyframe change by
-// less than 0.01 bits and 0.01 dB beyond this many.
+// Lloyd iterations: beyond this many, the index entropy and the PSNR of the default scene's
+// keyframe hardly change (docs/results/2026-11-30-comment-measurements.md).
 constexpr int kIterations = 12;
 
 // The entry nearest to vector v (squared distance; the first of equals).

@@ -137,9 +137,9 @@ void SetSource(const GaussianSet& set, GroupPlan* plan) {
 }
 
 // Higher SH coefficients and rotation components cluster at zero (view-independent colour,
-// axis-aligned Gaussians): a level at exactly zero keeps them there. Without it, the 3-bit
-// higher SH of the default scene's keyframe cost 1.1 dB on the held-out view (37.22 against
-// 38.36 unquantized); with it, 0.3 dB.
+// axis-aligned Gaussians): a level at exactly zero keeps them there. Without it, the 3-bit higher
+// SH of the default scene's keyframe cost its held-out view several times what they cost with it
+// (docs/results/2026-11-30-readme-notebook.md, "A quantization level at zero").
 bool HasZeroLevel(int group) { return group == kGroupRotation || group >= kGroupShRest; }
 
 Status CheckFinite(size_t n, const GroupPlan& plan) {
@@ -465,12 +465,13 @@ Status PlanScalar(size_t n, int bits, const GroupPlan& like, GroupPlan* plan) {
   return PlanQuantization(n, bits, plan);
 }
 
-// Keeps a group's codebook only where it pays on this content: where it lowers the group's
-// squared error plus lambda times its bytes below the scalar bits', lambda being the slope of
-// the scalar ladder there (error gained per byte saved one bit lower). A threshold on the error
-// alone would be wrong both ways: 1024 colour entries on the default scene's keyframe err 6 %
-// more in SH space than 5-bit scalars, in 6 % fewer bytes, and render 0.15 dB better; on
-// Panoptic basketball they cost 49 % more bytes than the scalars.
+// Keeps a group's codebook only where it pays on this content: where it lowers the group's squared
+// error plus lambda times its bytes below the scalar bits', lambda being the slope of the scalar
+// ladder there (error gained per byte saved one bit lower). A threshold on the error alone would be
+// wrong both ways: on the default scene's keyframe, colour entries err more in SH space than the
+// scalars, yet take fewer bytes and render better; on Panoptic basketball they cost more bytes than
+// the scalars (docs/results/2026-11-30-readme-notebook.md, "Codebooks (bitstream 0.6)";
+// docs/results/2026-11-30-comment-measurements.md).
 Status KeepCodebookIfItPays(size_t n, const std::vector<uint32_t>& order,
                             const GaussianQuantization& quantization, GroupPlan* plan) {
   const int bits = RequestedBits(plan->group, quantization);

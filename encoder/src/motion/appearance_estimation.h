@@ -1,9 +1,9 @@
-// Appearance estimation of one inter frame (bitstream 0.3's APPEARANCE packet; not in the
-// paper): a change of each dynamic Gaussian's SH DC colour, in quantization steps, trained
-// with the frame's motion from the same renders. The paper keeps colours fixed within a GOP;
-// on the default scene the held-out view then loses 1.08 dB over 10 frames, only on moving
-// content, because shading changes as parts turn. With each Gaussian's DC refitted per frame
-// (unquantized, 300 iterations) it lost 0.54 dB.
+// Appearance estimation of one inter frame (bitstream 0.3's APPEARANCE packet; not in the paper): a
+// change of each dynamic Gaussian's SH DC colour, in quantization steps, trained with the frame's
+// motion from the same renders. The paper keeps colours fixed within a GOP; on the default scene
+// the held-out view then drifts over a GOP, only on moving content, because shading changes as
+// parts turn, and refitting each Gaussian's DC per frame removes about half of that drift
+// (docs/results/2026-11-30-readme-notebook.md, "Moving parts change colour within a GOP").
 //
 // Like the grid, the values train under simulated quantization (uniform noise of one step)
 // and a rate term: their bits under a learned factorized entropy model, one density per

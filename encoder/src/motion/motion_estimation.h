@@ -4,14 +4,13 @@
 //   L_s2 = L_color + lambda_2 L_rate,
 // with simulated quantization (uniform noise of one quantization step on the grid values)
 // and L_rate the size of the noisy grid under the learned entropy model, in units of 100
-// kilobits. The paper does not give its normalisation; L_color being a mean over pixels, a
-// rate in coded size keeps the balance independent of the image size. In kilobits the paper's
-// lambda_2 set made inter frames of 0.5-1.7 KB (the paper's are 11.4 KB) whose quality fell
-// 0.3-0.6 dB per frame, each frame saving a kilobyte the next keyframe spends a thousand times
-// over: Panoptic basketball (320x180, frames 0-5 in one GOP, training views) 31.54 dB at the
-// keyframe, 28.57 at frame 5; in units of 100 kilobits (12-34 KB per inter frame, with 400
-// iterations) 30.33 dB; the default scene's held-out camera 37.18 -> 35.26 dB at frame 7
-// before, 36.47 dB after.
+// kilobits. The paper does not give its normalisation; L_color being a mean over pixels, a rate in
+// coded size keeps the balance independent of the image size. In kilobits the paper's lambda_2 set
+// made inter frames far smaller than the paper's and let their quality fall frame after frame, each
+// frame saving a kilobyte the next keyframe spends many times over; in units of 100 kilobits the
+// inter frames lose far less per frame, on Panoptic basketball and on the default scene
+// (docs/results/2026-11-30-readme-notebook.md, "Inter frames that hold quality";
+// docs/results/2026-11-30-comment-measurements.md).
 //
 // The dynamic set of frame t-1 is what the decoder reconstructed (closed loop); its positions
 // do not change while the grid is trained, so each Gaussian reads fixed voxels (MotionStencil)
@@ -39,11 +38,11 @@
 namespace m4d {
 
 struct MotionEstimationOptions {
-  // 100 left the grid under-trained (each of Panoptic's 27 views seen 4 times): frame 5 of the
-  // run above reached 29.58 dB with 100 iterations, 30.33 dB with 400. With 130 the frames late
-  // in a GOP drifted 0.10-0.17 dB below 400's; 200 with the paper's lambda_2 keeps every frame
-  // within 0.1 dB of 400 at the same bytes, in half the time
-  // (docs/results/2026-11-30-readme-notebook.md, "Faster inter frames").
+  // 100 left the grid under-trained (each of Panoptic's views seen a few times:
+  // docs/results/2026-11-30-readme-notebook.md, "Inter frames that hold quality"). With 130 the
+  // frames late in a GOP drifted below 400's; 200 with the paper's lambda_2 keeps every frame near
+  // 400's (within the target) at the same bytes, in half the time ("Faster inter frames"
+  // there).
   int iterations = 200;
   int views_per_step = 1;           // training views rendered for each step (their mean loss)
   float grid_learning_rate = 0.5f;  // in quantization steps per iteration (Adam)

@@ -34,8 +34,9 @@ struct GopOptions {
   // dynamic Gaussian is near (an object entering the static part of the scene) gets few
   // compensation candidates, so r_t stays small while the frame loses several dB; and colours
   // are fixed within a GOP, so shading that changes as parts turn drifts until a keyframe.
-  // On the default scene a 2.5 dB drop over the training views is about 1.6 dB on the
-  // held-out camera; GOPs last 5 frames and inter frames stay within 0.6 dB of their keyframe.
+  // On the default scene the training views' drop is a smaller loss on the held-out camera, and
+  // this threshold keeps the inter frames there close to their keyframe
+  // (docs/results/2026-11-30-comment-measurements.md).
   float max_psnr_drop = 2.5f;
   // The drop is measured from the keyframe's training PSNR less its noise gap
   // (SequenceEncoder::NoiseGap); off: from the keyframe's training PSNR itself.
@@ -87,30 +88,31 @@ struct EncoderOptions {
   int retrain_iterations = 500;
   // t1 = keyframe + lookahead_frames, within the sequence, reached through fine-tuning steps
   // lookahead_step frames apart. The paper looks about 30 frames ahead; on the default scene a
-  // lookahead beyond a few frames loses the fast limbs (their Gaussians stop following and
-  // stay static, and their texture then doubles as the figure moves: 1.4 dB lower on the
-  // first inter frame with 19 frames in steps of 2 than with 5 in steps of 1). Content that
+  // lookahead beyond a few frames loses the fast limbs (their Gaussians stop following and stay
+  // static, and their texture then doubles as the figure moves, so the first inter frame is worse
+  // than with a short lookahead: docs/results/2026-11-30-comment-measurements.md). Content that
   // starts moving later is left to compensation and the adaptive GOP.
   int lookahead_frames = 5;
   int lookahead_step = 1;
   DecouplingOptions decoupling;
   MotionEstimationOptions motion;
-  // The first inter frame of a GOP also trains the MLP, which every later frame of the GOP
-  // uses: 300 steps there and 200 on the others, with the paper's lambda_2, make the bytes
-  // and PSNR of 300 and 400 (docs/results/2026-11-30-readme-notebook.md, "Faster inter frames"; 150
-  // there lost 0.02-0.05 dB more over the sequence).
+  // The first inter frame of a GOP also trains the MLP, which every later frame of the GOP uses:
+  // 300 steps there and 200 on the others, with the paper's lambda_2, make the bytes and PSNR of
+  // 300 and 400 (docs/results/2026-11-30-readme-notebook.md, "Faster inter frames"); fewer steps on
+  // the first inter frame lost more over the sequence ("Longer GOPs" there;
+  // docs/results/2026-11-30-comment-measurements.md).
   int first_motion_iterations = 300;
   // The motion rate weight falls by this share of lambda_2 per inter frame along a GOP, to
   // kMinMotionRateShare of it (pipeline/motion_rate_schedule.h; 0: constant, the paper's).
   double motion_rate_decay = 0.0;
   CompensationThresholds compensation_thresholds;
   CompensationOptions compensation;
-  // Compensation is a mode decision: a frame codes its trained compensation only when that
-  // raises the training views' mean PSNR by at least this many dB; otherwise its bytes would
-  // buy nothing. Replicas of dynamic Gaussians (the paper's candidates) cannot reach content
-  // that appears away from the moving parts: on the default scene, where the ball appears,
-  // they cost 0.6 to 5.7 KB per frame for -0.24 to +0.16 dB
-  // (docs/results/2026-11-30-readme-notebook.md, "Compensation as a mode decision").
+  // Compensation is a mode decision: a frame codes its trained compensation only when that raises
+  // the training views' mean PSNR by at least this many dB; otherwise its bytes would buy nothing.
+  // Replicas of dynamic Gaussians (the paper's candidates) cannot reach content that appears away
+  // from the moving parts: on the default scene, where the ball appears, they cost bytes on every
+  // frame and did not reliably raise its PSNR (docs/results/2026-11-30-readme-notebook.md,
+  // "Compensation as a mode decision").
   double compensation_min_gain = 0.1;
   // The decision is also taken early (CompensationOptions::probe_iteration): a compensation
   // whose gain is on course to stay under compensation_min_gain ends its training there and is
@@ -123,11 +125,11 @@ struct EncoderOptions {
   // And the colour change (APPEARANCE) trained with the motion: coded only when it raises the
   // training views' mean PSNR of the moved set by more than this many dB.
   double appearance_min_gain = 0.0;
-  // The colour change is trained only from this many training views on: per Gaussian it has
-  // three values, and a sparse rig's few views let it fit what they alone see. On the
-  // realistic scene's 3 views it raised the training views' PSNR by 0.3 dB a frame for 7 KB
-  // and lowered the held-out camera's by 0.07-0.15 dB; on the default scene's 15 views the
-  // held-out camera gains with the training views.
+  // The colour change is trained only from this many training views on: per Gaussian it has three
+  // values, and a sparse rig's few views let it fit what they alone see. On the realistic scene's
+  // three views it raised the training views' PSNR and lowered the held-out camera's; on the
+  // default scene's fifteen views the held-out camera gains with the training views
+  // (docs/results/2026-11-30-readme-notebook.md, "Moving parts change colour within a GOP").
   int appearance_min_views = 6;
   GopOptions gop;
   AblationSwitches ablation;

@@ -46,56 +46,22 @@ RatePointSettings Point(const char* name, double lambda_2, float gradient,
 }  // namespace
 
 const std::vector<RatePointSettings>& RatePoints() {
-  // Measured on the default scene (frames 0-2, lambda_2 = 2e-4):
-  //  - keyframe bits: the higher SH coefficients need at least 3 bits (at 2 a frame loses
-  //    6.5 dB: one step for all of them leaves no level near zero); the other groups lose 0.5
-  //    to 1 dB a step below r1's;
-  //  - compensation at 12/6/8/6/6/3 instead of the keyframes' 16/8/10/8/8/5 is 30 % fewer
-  //    bytes for 0.04 dB at most: a compensated Gaussian lives for a GOP at most, and the
-  //    motion moves it by more than a 12-bit step anyway;
-  //  - r4's keyframe at 14/7/8 instead of 15/7/9 bits (positions, scales, rotations), with the
-  //    writer's level at zero: 7 % fewer keyframe bytes for 0.004 dB on the default scene's
-  //    held-out view (0.016 dB pruned by importance), none on the realistic scene's; r3's
-  //    rotations at 8 bits too, so that the ladder still rises;
-  //  - rotations one bit below the four-component coding's since bitstream 0.5: the three
-  //    smallest components span +-1/sqrt(2), and at b - 1 bits their mean error is that of
-  //    four components at b (default scene's keyframe at 6 bits: 2.57 degrees against 2.37 at
-  //    7, the largest 7.95 against 15.11). The keyframes of the default scene, Panoptic and the
-  //    realistic scene: 6.5-9.6 % fewer bytes at r1's and r4's bits, held-out PSNR within
-  //    0.01 dB of 0.4's four components at the old bits;
-  //  - keyframe codebooks (bitstream 0.6), each kept only where it pays against the scalar
-  //    bits (GaussianQuantization): on the default scene's and Panoptic basketball's keyframes
-  //    (69k and 76k Gaussians) r1 with 1024 SH DC and 16 higher-SH entries takes 5.7 % and
-  //    3.2 % fewer bytes at +0.09 and -0.02 dB; r2 and r3 with 64 higher-SH entries 1.5 % and
-  //    0.1 % (r2), at +0.04 and -0.01 dB; r4 with 256 entries 7.4 % and 5.4 % at -0.03 and
-  //    0.00 dB. 1024 DC entries at r2's 6 bits lose 0.15 dB on the default scene, scale
-  //    codebooks 0.7 dB at r1; at r5's bits the writer keeps no codebook;
-  //  - r1's keyframe at 11/5/5 instead of 12/5/6 bits (positions, scales, rotations), each
-  //    trained for its bits (2000 iterations, docs/results/2026-11-30-readme-notebook.md, "r1's
-  //    keyframe bits"): 10.3 % fewer bytes on the default scene for -0.20 and +0.05 dB (seeds 1 and
-  //    2), 12.8 % on Panoptic basketball; every other step of one group's bits costs more per byte
-  //    saved;
-  //  - r1's rotations one bit lower with canonical rotations (the equivalent rotation nearest
-  //    the identity, GaussianQuantization::canonical_rotations), whose three smallest
-  //    components span +-sin(pi/8): r1's keyframe trained at 11/5/4 is 2.3 % smaller at
-  //    +0.02 dB (two seeds). At r2-r5's bits one bit less is also the same keyframe PSNR for
-  //    1.3-5.8 % fewer bytes, but the default scene's r4 stream lost 0.06-0.09 dB (two seeds,
-  //    in the second GOP), so they keep plain rotations
-  //    (docs/results/2026-11-30-readme-notebook.md, "Canonical rotations");
-  //  - r1's keyframe at 10-bit positions and 2 higher-SH entries instead of 11 bits and 16
-  //    entries, trained for its bits (docs/results/2026-11-30-readme-notebook.md, "r1 at 6 bytes
-  //    per Gaussian"): 10.4 % fewer bytes on the default scene for -0.46 and -0.17 dB (seeds 1 and
-  //    2), where one bit less on rotations instead of positions costs -0.56 dB for 6.3 %, 256 SH DC
-  //    entries -0.44 dB for 4.5 %, and training with the codebooks (k-means every 100 steps) gains
-  //    nothing;
-  //  - tau_g = 1e-3 instead of 5e-4 replicates 102 Gaussians instead of 351 for 0.02 to
-  //    0.06 dB: most replicas refine what the moved set already shows;
-  //  - lambda_2 is the paper's set (5e-4 .. 5e-5). With motion estimation at 130 steps
-  //    instead of 400 it was raised by a fifth to keep the bytes; at 200 steps the paper's set
-  //    spends the 400-step bytes (default scene, 12 frames: -0.19 to +0.61 % in all at r4 and
-  //    r1) with every frame within 0.1 dB of them, where a fifth more saved 0.4-1.5 % and lost
-  //    up to 0.15 dB late in a GOP (docs/results/2026-11-30-readme-notebook.md, "Faster inter
-  //    frames").
+  // Each point trades quality for bytes in three places. lambda_2 weighs the motion grid's bits
+  // (the paper's set, which at 200 motion steps spends what 400 steps did); tau_g, the replication
+  // gradient, makes fewer compensation candidates as it rises, and most replicas only refine what
+  // the moved set already shows; the keyframe bits and codebooks size the keyframes. Compensation
+  // has bits of its own, coarser than the keyframes' except at r1, whose keyframes are trained for
+  // theirs: a compensated Gaussian lives a GOP at most, and the motion moves it by more than a fine
+  // step anyway. Each group's keyframe bits sit where one bit less costs more quality than its
+  // bytes are worth (the higher SH need enough levels to keep one near zero). Rotations are coded
+  // as their three smallest components, one bit below four components for the same error, and
+  // canonical only at r1, where the keyframes trained for them gain (at the other points a later
+  // GOP of the default scene lost quality). Codebooks are offered where they paid; the writer
+  // keeps one only where it pays on the content. Evidence:
+  // docs/results/2026-11-30-readme-notebook.md ("A quantization level at zero", "Smallest-three
+  // rotations (bitstream 0.5)", "Codebooks (bitstream 0.6)", "r1's keyframe bits", "Canonical
+  // rotations", "r1 at 6 bytes per Gaussian", "Faster inter frames") and
+  // docs/results/2026-11-30-comment-measurements.md.
   static const std::vector<RatePointSettings> kPoints = {
       Point("r1", 5e-4, 4e-3f, Canonical(Codebooks(Bits(10, 5, 4, 5, 5, 3), 0, 1024, 2)),
             Canonical(Bits(11, 5, 5, 5, 5, 3))),

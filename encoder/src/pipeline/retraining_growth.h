@@ -4,15 +4,18 @@
 // temporal_change.h with the render as the "before" image) are content that appeared or that
 // motion could not reach.
 // - Bound: the per-pixel bound (KeyframeTrainingOptions::max_gaussians_per_pixel) over those
-//   pixels, not over the whole views. Over the whole views, a retraining that starts below
-//   the cap (after importance pruning) refilled the room with Gaussians the views do not
-//   need: on the realistic scene it added 18,228 static Gaussians where 4,403 did, and its
-//   keyframe grew from 85 to 290 KB.
-// - Seeds: photo-consistent points cast from those pixels, half the bound, so new content
-//   starts where it is instead of waiting for densification to creep to it from the nearest
-//   Gaussians (the default scene's object appearing at frame 10 reached 34.3 dB on the
-//   training views in 500 iterations, 3.6 dB below the frame before it). Only inside the
-//   box of the prediction's positions, so that they do not stretch its coded position range.
+//   pixels, not over the whole views. Over the whole views, a retraining that starts below the cap
+//   (after importance pruning) refilled the room with Gaussians the views do not need: on the
+//   realistic scene it added several times as many static Gaussians as from an unpruned start, and
+//   its keyframe grew threefold (docs/results/2026-11-30-readme-notebook.md, "Faint Gaussians
+//   removed").
+// - Seeds: photo-consistent points cast from those pixels, half the bound, so new content starts
+//   where it is instead of waiting for densification to creep to it from the nearest Gaussians (the
+//   default scene's object appearing at frame 10 left the retrained keyframe well below the frame
+//   before it on the training views: docs/results/2026-11-30-readme-notebook.md, "A later keyframe
+//   grows what its prediction does not explain"; docs/results/2026-11-30-comment-measurements.md).
+//   Only inside the box of the prediction's positions, so that they do not stretch its coded
+//   position range.
 #ifndef M4D_ENCODER_PIPELINE_RETRAINING_GROWTH_H_
 #define M4D_ENCODER_PIPELINE_RETRAINING_GROWTH_H_
 
@@ -32,13 +35,13 @@ struct RetrainingGrowthOptions {
   TemporalChangeOptions unexplained;  // render against image
   RenderSettings render;              // threads, SH degree and background of the prediction
   uint64_t seed = 0;
-  // Seeds start nearly transparent, unlike a first keyframe's points (0.1): sparse seeds take
-  // large scales from their few neighbours, and at 0.1 they veiled the prediction (training
-  // views from 38 to 20 dB at the retraining's 10th step on the default scene, 28 to 18 on
-  // Panoptic basketball), which 500 steps did not fully repair. At 0.01, a dependent keyframe
-  // 2 frames in: default scene 37.46 -> 38.07 dB held-out for 2.4 % more bytes; Panoptic
-  // 23.25 -> 23.46 dB for 10.7 % fewer; the realistic scene (3 training views) 23.64 -> 23.36
-  // held-out, its training views 32.02 -> 33.07.
+  // Seeds start nearly transparent, unlike a first keyframe's points: sparse seeds take large
+  // scales from their few neighbours, and opaque ones veiled the prediction (the training views
+  // collapsed at the retraining's first steps on the default scene and on Panoptic basketball),
+  // which the retraining did not fully repair. Nearly transparent, they gave better dependent
+  // keyframes on both; the realistic scene's three training views gained at its held-out camera's
+  // expense (docs/results/2026-11-30-readme-notebook.md, "The 60-frame default scene with bitstream
+  // 0.5"; docs/results/2026-11-30-comment-measurements.md).
   float seed_opacity = 0.01f;
 };
 

@@ -358,11 +358,11 @@ Status SequenceEncoder::StartDependentGop(int frame, GaussianModel model, Gaussi
   TrainingViews views;
   M4D_RETURN_IF_ERROR(OpenGop(frame, keyframe_seconds, true, &views));
   Gop& gop = *gop_;
-  // The model's first rows are the kept static set, unchanged by the retraining. The others
-  // (the previous dynamic set, retrained, and what grew) are decoupled like a keyframe's: the
-  // dynamic ones are the new dynamic layer, the static ones are added to the static set (a
-  // STATIC_UPDATE). Left dynamic, what grew in the background widened the motion grid's box
-  // and drifted with it (default scene, frames 10-19: 34.57 -> 33.13 dB).
+  // The model's first rows are the kept static set, unchanged by the retraining. The others (the
+  // previous dynamic set, retrained, and what grew) are decoupled like a keyframe's: the dynamic
+  // ones are the new dynamic layer, the static ones are added to the static set (a STATIC_UPDATE).
+  // Left dynamic, what grew in the background widened the motion grid's box and drifted with it
+  // (docs/results/2026-11-30-readme-notebook.md, "The static layer is sent once").
   std::vector<uint8_t> dynamic;
   M4D_RETURN_IF_ERROR(DynamicFlags(frame, model, views, &dynamic));
   std::vector<uint8_t> grown(model.size(), 1);

@@ -104,11 +104,11 @@ class SequenceEncoder {
   // frames with the keyframe's PSNR less this gap, not with what no inter frame can reach.
   // 0 on a noise-free capture.
   Status NoiseGap(const TrainingViews& next, double* gap);
-  // Mode decision (ours): the frame moves its dynamic set only if that raises the training
-  // views' mean PSNR by more than options_.motion_min_gain above showing the previous frame
-  // again. On real captures the motion of
-  // an over-dynamic keyframe can make a frame worse than doing nothing (30.88 dB against
-  // 33.4-39.3 dB on a classroom capture); a skipped frame's grid is SkipMotion's.
+  // Mode decision (ours): the frame moves its dynamic set only if that raises the training views'
+  // mean PSNR by more than options_.motion_min_gain above showing the previous frame again. On real
+  // captures the motion of an over-dynamic keyframe can make a frame worse than doing nothing (a
+  // classroom capture: docs/results/2026-11-30-comment-measurements.md); a skipped frame's grid is
+  // SkipMotion's.
   Status DecideMotion(const GaussianSet& still, const GaussianSet& moved, bool* skip,
                       FrameReport* report);
   // Applies the frame's colour change to *moved when it raises the training views' PSNR by

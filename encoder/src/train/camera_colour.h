@@ -4,9 +4,9 @@
 // absorb the differences as view-dependent colour and fog that held-out cameras see. Only
 // training applies them; the model renders in the cameras' common colour.
 //
-// Panoptic basketball, frame 0, 2000 iterations (`m4d train DIR --iterations 2000
-// --sh-degree 1`): held-out cameras 23.21 -> 24.04 dB (SSIM 0.860 -> 0.870); the realistic
-// synthetic scene (1000 iterations) 21.25 -> 22.89 dB; the default scene 37.25 -> 37.44 dB.
+// Measured on Panoptic basketball, the realistic synthetic scene and the default scene: the
+// held-out cameras gain on all three, most where the cameras differ most
+// (docs/results/2026-11-30-readme-notebook.md, "Cameras differ in colour").
 #ifndef M4D_ENCODER_TRAIN_CAMERA_COLOUR_H_
 #define M4D_ENCODER_TRAIN_CAMERA_COLOUR_H_
 
@@ -32,10 +32,10 @@ class CameraColour {
   const float* terms(int view) const { return &state_[kStride * static_cast<size_t>(view)]; }
 
  private:
-  // What all views share, a gain and offset the Gaussians' colours could carry as well, is
-  // taken out after every step, so that the model stays in the cameras' mean colour: left
-  // free, the shared part drifted and the default scene's held-out camera fell from 37.3 to
-  // 27.1 dB.
+  // What all views share, a gain and offset the Gaussians' colours could carry as well, is taken
+  // out after every step, so that the model stays in the cameras' mean colour: left free, the
+  // shared part drifted and the default scene's held-out camera lost much of its quality
+  // (docs/results/2026-11-30-comment-measurements.md).
   void RemoveCommonPart();
 
   static constexpr size_t kStride = 18;  // 6 terms, then Adam's first and second moments

@@ -36,10 +36,11 @@ struct DensificationSettings {
   float max_world_scale = 0.1f;      // times the extent; prune above when pruning by size
   float split_scale_divisor = 1.6f;  // the reference's 0.8 x 2 children
   size_t max_gaussians = kMaxRenderGaussians;  // hard cap after densification
-  // At most this fraction of the Gaussians is pruned in one step, the most transparent first
-  // (1: no limit, the reference). A short schedule on a capture without initial points
-  // otherwise loses most of its model at the first pruning after the opacity reset: 80k of
-  // 108k Gaussians on the Panoptic basketball capture, 21.2 dB falling to 8.2 dB.
+  // At most this fraction of the Gaussians is pruned in one step, the most transparent first (1: no
+  // limit, the reference). A short schedule on a capture without initial points otherwise loses
+  // most of its model at the first pruning after the opacity reset, and its quality with it, as on
+  // the Panoptic basketball capture (docs/results/2026-11-30-readme-notebook.md, "Training does not
+  // collapse"; docs/results/2026-11-30-comment-measurements.md).
   float max_prune_fraction = 1.0f;
   // The first this many Gaussians are held fixed (a kept static set): never split nor pruned;
   // one that qualifies is cloned instead, and the clone is free.

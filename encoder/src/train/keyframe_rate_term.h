@@ -18,8 +18,8 @@
 // quaternion's three smallest components, which change with the one dropped.
 //
 // Measured (docs/results/2026-11-30-readme-notebook.md, "Rate-aware keyframe training"): on the
-// default scene's keyframe at r1, lambda_k = 1e-4 saves 4.0 % of the bytes for 0.40 dB, where one
-// bit less on positions saves 4.4 % for 0.13 dB; every rate point keeps lambda_k = 0.
+// default scene's keyframe at r1 the rate term costs more quality for its bytes than one bit less
+// on positions does, so every rate point keeps lambda_k = 0.
 #ifndef M4D_ENCODER_TRAIN_KEYFRAME_RATE_TERM_H_
 #define M4D_ENCODER_TRAIN_KEYFRAME_RATE_TERM_H_
 

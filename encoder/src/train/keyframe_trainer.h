@@ -98,13 +98,13 @@ struct KeyframeTrainingOptions {
   int densify_interval = 100;
   int opacity_reset_interval = 3000;  // 0: never; size pruning starts after the first
   float opacity_reset_value = 0.01f;
-  // Densification and pruning wait this many iterations after an opacity reset, so that
-  // what the views need regains its opacity first (the reference's 100-iteration interval
-  // gives it that; a short schedule's interval of 28 pruned most of a model). Short() waits
-  // half the window left before densification ends: waiting longer than the window skips
-  // the pruning after the reset, and the default scene's 1000-iteration keyframe then kept
-  // the Gaussians the reset left transparent (inter frames drifted 0.45 dB per frame on the
-  // held-out camera instead of 0.26).
+  // Densification and pruning wait this many iterations after an opacity reset, so that what the
+  // views need regains its opacity first (the reference's 100-iteration interval gives it that; a
+  // short schedule's interval of 28 pruned most of a model). Short() waits half the window left
+  // before densification ends: waiting longer than the window skips the pruning after the reset,
+  // and the default scene's 1000-iteration keyframe then kept the Gaussians the reset left
+  // transparent, and its inter frames drifted faster on the held-out camera
+  // (docs/results/2026-11-30-readme-notebook.md, "Training does not collapse").
   int reset_recovery = 100;
   int sh_degree_interval = 1000;  // active SH degree + 1 every this many iterations (0: never)
   int start_sh_degree = 0;        // active at the start (the model's degree when retraining)
@@ -146,15 +146,15 @@ struct KeyframeTrainingOptions {
   // iterations (1000 x 7000 / 30000, full degree at 10% of the run as in the reference);
   // at most 1 million Gaussians, and at most a quarter of a Gaussian per training pixel.
   // The quarter was measured (docs/results/2026-11-30-readme-notebook.md, "Densification is bounded
-  // by the views' pixels"): on the realistic scene's 3 views of 320x240 the unbounded keyframe
-  // reached 0.56 Gaussians per pixel; bounded, it has half the Gaussians and 0.27 dB more on its
-  // held-out view, while the default scene's 15 views (0.16 per pixel) are left as they were. No
-  // importance pruning by share: the share a capture affords is chosen per capture
-  // (prune_share_selection.h), not by the schedule. The last quarter of the run is
-  // quantization-aware (at `quantization`, which the encoder sets to its rate point's keyframe
-  // bits). The same proportions at another length (Short() is Short(7000)): densification from
-  // iterations / 14 to half the run every iterations / 70 (at most 100), the opacity reset at
-  // 3/7 of the run, SH degree up every iterations / 30.
+  // by the views' pixels"): on the realistic scene's three views the unbounded keyframe went far
+  // past it; bounded, it has half the Gaussians and renders its held-out view better, while the
+  // default scene's fifteen views, well under it, are left as they were. No importance pruning by
+  // share: the share a capture affords is chosen per capture (prune_share_selection.h), not by the
+  // schedule. The last quarter of the run is quantization-aware (at `quantization`, which the
+  // encoder sets to its rate point's keyframe bits). The same proportions at another length
+  // (Short() is Short(7000)): densification from iterations / 14 to half the run every
+  // iterations / 70 (at most 100), the opacity reset at 3/7 of the run, SH degree up every
+  // iterations / 30.
   static KeyframeTrainingOptions Short(int iterations = 7000);
 };
 

@@ -28,11 +28,13 @@ struct PhotoConsistencyOptions {
   int rays_per_point = 3;      // rays drawn per point asked for
   int depths = 48;             // samples along a ray
   float distinctness = 0.35f;  // best score below this times the ray's median score
-  // A candidate counts only if this many views see it (the ray's own included; in front of
-  // the near plane, inside the image), or half the views when that is fewer. Three, not half:
-  // on the Panoptic basketball capture (27 views) a player or the wall near the dome's edge
-  // is inside few cameras' frusta; asking half the views gave them no point and training
-  // filled them with fog (held-out 16.6 dB; with 2, 3 and 4 views: 22.8, 23.2, 22.6 dB).
+  // A candidate counts only if this many views see it (the ray's own included; in front of the near
+  // plane, inside the image), or half the views when that is fewer. Three, not half: on the
+  // Panoptic basketball capture (27 views) a player or the wall near the dome's edge is inside few
+  // cameras' frusta; asking half the views gave them no point and training filled them with fog,
+  // and two or four views did worse than three on the held-out cameras
+  // (docs/results/2026-11-30-readme-notebook.md, "No initial points";
+  // docs/results/2026-11-30-comment-measurements.md).
   int min_views = 3;
   // Depth range of the candidates, in multiples of the cameras' extent (scene_extent.h):
   // from the near plane to far_extents times it.

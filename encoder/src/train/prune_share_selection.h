@@ -1,18 +1,17 @@
 // Prune share selection: how much of a keyframe importance pruning may remove
-// (KeyframeTrainingOptions::importance_prune_share) is a property of the capture, not a
-// constant. A 0.1 share halves the default scene's keyframe for 0.26 dB on its held-out
-// camera, yet costs Panoptic basketball 0.57 dB at 0.05 and a sparse rig 0.27 dB at 0.01; and
-// the training views cannot tell these apart (they lose least where the held-out camera loses
-// most: docs/results/2026-11-30-readme-notebook.md, "Keyframes pruned by importance"). So training
-// views are held out (one in ten, at least one; one view alone measured Panoptic's differences with
-// 0.3 dB of noise): the schedule, shortened, runs on the others to where pruning happens; from
-// there one branch goes on unpruned and one per candidate share, largest first. The first candidate
-// whose held-out views lose at most max_loss_per_halving_db for every halving of the keyframe's
-// coded bytes (against the unpruned branch) is the share. The bound is a rate trade: the rate
-// points trade about 3 dB of the stream per halving of its bytes, so a share within 0.5 dB
-// per halving of the keyframe is the cheaper way to the same bytes. The held-out views
-// predict the test cameras' loss (default scene at 0.1: 0.29 against 0.26 dB; Panoptic at
-// 0.03: 0.36 against 0.35 dB).
+// (KeyframeTrainingOptions::importance_prune_share) is a property of the capture, not a constant. A
+// large share halves the default scene's keyframe for little on its held-out camera, yet Panoptic
+// basketball and a sparse rig lose as much or more at much smaller shares; and the training views
+// cannot tell these apart (they lose least where the held-out camera loses most:
+// docs/results/2026-11-30-readme-notebook.md, "Keyframes pruned by importance"). So training views
+// are held out (one in ten, at least one; one view alone was too noisy on Panoptic): the schedule,
+// shortened, runs on the others to where pruning happens; from there one branch goes on unpruned
+// and one per candidate share, largest first. The first candidate whose held-out views lose at most
+// max_loss_per_halving_db for every halving of the keyframe's coded bytes (against the unpruned
+// branch) is the share. The bound is a rate trade: it is a fraction of what the rate points give up
+// in the stream per halving of its bytes, so a share within it is the cheaper way to the same
+// bytes. The held-out views predict what the test cameras lose
+// (docs/results/2026-11-30-readme-notebook.md, "The prune share is chosen per capture").
 #ifndef M4D_ENCODER_TRAIN_PRUNE_SHARE_SELECTION_H_
 #define M4D_ENCODER_TRAIN_PRUNE_SHARE_SELECTION_H_
 

@@ -1,13 +1,13 @@
-// Rate weight selection: how much the keyframe's rate term may pull its attributes towards
-// likelier levels (KeyframeTrainingOptions::rate_weight, lambda_k) is a property of the
-// capture. On Panoptic basketball lambda_k = 1e-3 codes its keyframe 5 % smaller at a 0.32 dB
-// higher held-out PSNR (a regulariser on a sparse real rig), where on the default scene 1e-4
-// already costs 0.40 dB for 4 % (docs/results/2026-11-30-readme-notebook.md, "Rate-aware keyframe
-// training"). So, as for the prune share (prune_share_selection.h), training views are held out:
-// the shortened schedule runs on the others to where quantization-aware training starts, from there
-// one branch goes on without the rate term and one per candidate weight, largest first. The first
-// whose held-out views lose at most the bound per halving of the coded keyframe is the weight, else
-// 0.
+// Rate weight selection: how much the keyframe's rate term may pull its attributes towards likelier
+// levels (KeyframeTrainingOptions::rate_weight, lambda_k) is a property of the capture. On Panoptic
+// basketball a rate weight codes the keyframe smaller and renders its held-out cameras better (a
+// regulariser on a sparse real rig), where on the default scene a smaller weight already costs more
+// quality than the bytes it saves are worth (docs/results/2026-11-30-readme-notebook.md,
+// "Rate-aware keyframe training"; docs/results/2026-11-30-comment-measurements.md). So, as for the
+// prune share (prune_share_selection.h), training views are held out: the shortened schedule runs
+// on the others to where quantization-aware training starts, from there one branch goes on without
+// the rate term and one per candidate weight, largest first. The first whose held-out views lose at
+// most the bound per halving of the coded keyframe is the weight, else 0.
 #ifndef M4D_ENCODER_TRAIN_RATE_WEIGHT_SELECTION_H_
 #define M4D_ENCODER_TRAIN_RATE_WEIGHT_SELECTION_H_
 

@@ -1,13 +1,13 @@
 // Start size selection: how many photo-consistent points a capture without points starts from
-// (KeyframeTrainingOptions::sweep_share) is a property of the capture. A tenth of the sweep
-// lifts Panoptic basketball's test cameras by 1.3 dB at 58 % of the bytes, and costs the
-// default scene without its points 1.0 dB (docs/design/start_size_selection.md). So each
-// candidate start trains the prune share selection's trunk (prune_share_selection.h) on all
-// training views but the held-out ones, and the held-out views judge the trunks' unpruned
-// branches, rate-adjusted: a candidate scores its held-out PSNR plus max_loss_per_halving_db
-// for every halving of the coded bytes against the first candidate's. The best score wins
-// (the earlier candidate on ties), and its trunk goes on to choose the prune share, so the
-// selection costs one trunk per candidate after the first.
+// (KeyframeTrainingOptions::sweep_share) is a property of the capture. A tenth of the sweep lifts
+// Panoptic basketball's test cameras and takes fewer bytes, yet lowers the default scene's when it
+// starts without its points (docs/design/start_size_selection.md). So each candidate start trains
+// the prune share selection's trunk (prune_share_selection.h) on all training views but the
+// held-out ones, and the held-out views judge the trunks' unpruned branches, rate-adjusted: a
+// candidate scores its held-out PSNR plus max_loss_per_halving_db for every halving of the coded
+// bytes against the first candidate's. The best score wins (the earlier candidate on ties), and its
+// trunk goes on to choose the prune share, so the selection costs one trunk per candidate after the
+// first.
 #ifndef M4D_ENCODER_TRAIN_START_SIZE_SELECTION_H_
 #define M4D_ENCODER_TRAIN_START_SIZE_SELECTION_H_
 

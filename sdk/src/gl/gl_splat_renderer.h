@@ -70,8 +70,9 @@ class GlSplatRenderer {
   GlFunctions caller_gl_;               // the caller's context's table
   const GlFunctions* gl_ = nullptr;
   std::unique_ptr<SplatDrawProgram> program_;
-  // Headless only. RGBA8: faster to blend on llvmpipe than half floats, agrees with the CPU
-  // reference above 50 dB, and its alpha reaching exactly 1 is what early termination tests.
+  // Headless only. RGBA8: faster to blend on llvmpipe than half floats, agrees closely with the CPU
+  // reference (docs/results/2026-11-30-comment-measurements.md), and its alpha reaching exactly 1
+  // is what early termination tests.
   std::unique_ptr<OffscreenFramebuffer> framebuffer_;
   SplatInstanceBuilder instances_builder_;
   std::vector<SplatInstance> instances_;
