@@ -9,9 +9,9 @@
 
 #include <vector>
 
+#include "encoder/src/stream/stream_writer.h"
+#include "encoder/src/synthetic/synthetic_content.h"
 #include "m4d/m4d.h"
-#include "stream/stream_writer.h"
-#include "stream/synthetic_content.h"
 
 namespace m4d {
 namespace {

@@ -7,12 +7,12 @@
 #include <random>
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "common/byte_writer.h"
-#include "common/crc32.h"
-#include "common/md5.h"
-#include "entropy/symbol_block_reader.h"
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/crc32.h"
+#include "sdk/src/common/md5.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 namespace {

@@ -9,11 +9,11 @@
 #include <random>
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "common/byte_writer.h"
-#include "common/spec_limits.h"
-#include "layers/gaussian_set_reader.h"
-#include "layers/gaussian_set_writer.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/layers/gaussian_set_reader.h"
 
 namespace m4d {
 namespace {

@@ -13,9 +13,9 @@
 #include <random>
 #include <vector>
 
-#include "metrics/photometric_loss.h"
-#include "metrics/psnr.h"
-#include "metrics/ssim.h"
+#include "encoder/src/metrics/photometric_loss.h"
+#include "encoder/src/metrics/psnr.h"
+#include "encoder/src/metrics/ssim.h"
 
 namespace m4d {
 namespace {

@@ -16,14 +16,14 @@
 #include <random>
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "common/byte_writer.h"
-#include "decode/motion_application.h"
-#include "layers/gaussian_set.h"
-#include "layers/mlp_weights.h"
-#include "layers/mlp_writer.h"
-#include "layers/motion_grid.h"
-#include "layers/motion_grid_writer.h"
+#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/layers/motion_grid_writer.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/decode/motion_application.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/mlp_weights.h"
+#include "sdk/src/layers/motion_grid.h"
 
 namespace m4d {
 namespace {

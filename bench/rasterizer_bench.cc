@@ -15,13 +15,13 @@
 #include <random>
 #include <vector>
 
-#include "layers/gaussian_set.h"
-#include "render/camera.h"
-#include "render/gaussian_layer_view.h"
-#include "render/projection_backward.h"
-#include "render/render_context.h"
-#include "render/splat_backward.h"
-#include "render/splat_renderer.h"
+#include "encoder/src/raster/projection_backward.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/raster/splat_backward.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/render/camera.h"
+#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 namespace {

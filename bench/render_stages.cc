@@ -15,12 +15,12 @@
 #include <cstdio>
 #include <vector>
 
-#include "dataset/capture_loader.h"
-#include "image/file_bytes.h"
+#include "encoder/src/dataset/capture_loader.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/stream/stream_writer.h"
+#include "encoder/src/synthetic/synthetic_content.h"
 #include "m4d/m4d.h"
 #include "m4d/m4d_render.h"
-#include "stream/stream_writer.h"
-#include "stream/synthetic_content.h"
 
 namespace {
 

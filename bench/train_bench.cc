@@ -18,12 +18,12 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/nearest_neighbours.h"
-#include "layers/gaussian_set.h"
-#include "render/splat_renderer.h"
-#include "train/gaussian_model.h"
-#include "train/gaussian_optimizer.h"
-#include "train/keyframe_trainer.h"
+#include "encoder/src/geometry/nearest_neighbours.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/gaussian_optimizer.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 namespace {

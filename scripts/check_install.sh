@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Builds the SDK alone (M4D_SDK_ONLY), configured without an install prefix, installs it into a
-# scratch prefix given only at install time (as a packager or `cmake --install --prefix` does),
-# checks that m4d.pc points into that prefix and that the licence is installed, checks what the
-# shared library exports (the public m4d_* API only) and its soname, then builds two
-# out-of-tree consumers against the installed SDK, one through find_package (CMake) and one
-# through pkg-config (a plain Makefile), each linked shared and static, and checks that every
-# one decodes a conformance stream to the suite's frame hashes.
+# Builds the SDK alone (M4D_SDK_ONLY) and runs its tests there, configured without an install
+# prefix; installs it into a scratch prefix given only at install time (as a packager or
+# `cmake --install --prefix` does); checks that m4d.pc points into that prefix, that the licence
+# is installed, what the shared library exports (the public m4d_* API only) and its soname;
+# then builds two out-of-tree consumers against the installed SDK, one through find_package
+# (CMake) and one through pkg-config (a plain Makefile), each linked shared and static, and
+# checks that every one decodes a conformance stream to the suite's frame hashes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=${1:-build/install-check}
@@ -16,6 +16,8 @@ prefix=$(realpath -m "$work/prefix")
 cmake -S . -B "$work/sdk" -G Ninja -DCMAKE_BUILD_TYPE=Release -DM4D_WERROR=ON \
   -DM4D_SDK_ONLY=ON -DCMAKE_INSTALL_LIBDIR=lib >/dev/null
 cmake --build "$work/sdk" >/dev/null
+# The SDK's own tests, without the encoder: what an SDK-only build installs is what is tested.
+ctest --test-dir "$work/sdk" -j2 -L sdk --output-on-failure | tail -3
 cmake --install "$work/sdk" --prefix "$prefix" >/dev/null
 
 # pkg-config's paths lead into the prefix given at install time, not the configure-time one.

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "common/crc32.h"
 #include "m4d/m4d.h"
-#include "usage_exit.h"
+#include "sdk/src/common/crc32.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

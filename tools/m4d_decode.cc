@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "existing_output.h"
 #include "m4d/m4d.h"
-#include "number_checks.h"
-#include "usage_exit.h"
+#include "tools/existing_output.h"
+#include "tools/number_checks.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

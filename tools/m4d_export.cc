@@ -11,16 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "existing_output.h"
-#include "export/axis_rotation.h"
-#include "export/frame_gaussians.h"
-#include "export/gltf_splat_writer.h"
-#include "export/turn_gaussians.h"
-#include "image/file_bytes.h"
-#include "io/atomic_file.h"
+#include "encoder/src/export/axis_rotation.h"
+#include "encoder/src/export/frame_gaussians.h"
+#include "encoder/src/export/gltf_splat_writer.h"
+#include "encoder/src/export/turn_gaussians.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/ply/gaussian_ply.h"
 #include "m4d/m4d.h"
-#include "ply/gaussian_ply.h"
-#include "usage_exit.h"
+#include "tools/existing_output.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

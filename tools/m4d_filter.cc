@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "existing_output.h"
-#include "io/atomic_file.h"
+#include "encoder/src/io/atomic_file.h"
 #include "m4d/m4d.h"
-#include "usage_exit.h"
+#include "tools/existing_output.h"
+#include "tools/usage_exit.h"
 
 int main(int argc, char** argv) {
   std::string input, output;

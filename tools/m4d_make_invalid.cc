@@ -22,15 +22,15 @@
 #include <draco/core/decoder_buffer.h>
 #include <draco/core/draco_types.h>
 
-#include "bitstream/packet_header.h"
-#include "common/byte_writer.h"
-#include "common/crc32.h"
-#include "entropy/symbol_block_writer.h"
-#include "layers/adaptive_attribute_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/stream/stream_writer.h"
+#include "encoder/src/synthetic/synthetic_content.h"
 #include "m4d/m4d.h"
-#include "stream/stream_writer.h"
-#include "stream/synthetic_content.h"
-#include "usage_exit.h"
+#include "sdk/src/bitstream/packet_header.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/crc32.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

@@ -21,18 +21,18 @@
 #include <string>
 #include <vector>
 
-#include "dataset/capture_loader.h"
-#include "existing_output.h"
-#include "image/file_bytes.h"
-#include "image/image.h"
-#include "image/png_io.h"
-#include "io/atomic_file.h"
+#include "encoder/src/dataset/capture_loader.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image/image.h"
+#include "encoder/src/image/png_io.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/video/video_writer.h"
 #include "m4d/m4d.h"
 #include "m4d/m4d_render.h"
-#include "number_checks.h"
-#include "ply/gaussian_ply.h"
-#include "usage_exit.h"
-#include "video/video_writer.h"
+#include "tools/existing_output.h"
+#include "tools/number_checks.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "existing_output.h"
-#include "gop_index.h"
-#include "io/atomic_file.h"
+#include "encoder/src/io/atomic_file.h"
 #include "m4d/m4d.h"
-#include "usage_exit.h"
+#include "tools/existing_output.h"
+#include "tools/gop_index.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

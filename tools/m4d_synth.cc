@@ -10,17 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "common/md5.h"
-#include "common/spec_limits.h"
-#include "decode/frame_hash.h"
-#include "existing_output.h"
-#include "io/atomic_file.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/stream/stream_writer.h"
+#include "encoder/src/synthetic/synthetic_content.h"
+#include "encoder/src/synthetic/synthetic_edge_cases.h"
 #include "m4d/m4d.h"
-#include "number_checks.h"
-#include "stream/stream_writer.h"
-#include "stream/synthetic_content.h"
-#include "stream/synthetic_edge_cases.h"
-#include "usage_exit.h"
+#include "sdk/src/common/md5.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/decode/frame_hash.h"
+#include "tools/existing_output.h"
+#include "tools/number_checks.h"
+#include "tools/usage_exit.h"
 
 namespace {
 

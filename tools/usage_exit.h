@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "version_line.h"
+#include "tools/version_line.h"
 
 namespace m4d {
 

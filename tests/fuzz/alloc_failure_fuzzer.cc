@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-#include "stream_test_util.h"
+#include "tests/encoder/stream_test_util.h"
 
 namespace {
 

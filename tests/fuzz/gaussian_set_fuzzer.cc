@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "common/byte_reader.h"
-#include "layers/gaussian_set_reader.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/layers/gaussian_set_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

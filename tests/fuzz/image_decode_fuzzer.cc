@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "image/jpeg_io.h"
-#include "image/png_io.h"
+#include "encoder/src/image/jpeg_io.h"
+#include "encoder/src/image/png_io.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "bitstream/packet_header.h"
-#include "stream_test_util.h"
+#include "sdk/src/bitstream/packet_header.h"
+#include "tests/encoder/stream_test_util.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "common/byte_reader.h"
-#include "layers/mlp_weights.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 2) return 0;

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "common/byte_reader.h"
-#include "layers/motion_grid.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/layers/motion_grid.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "dataset/npz_archive.h"
-#include "dataset/zip_archive.h"
+#include "encoder/src/dataset/npz_archive.h"
+#include "encoder/src/dataset/zip_archive.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   constexpr size_t kLimit = 1 << 16;

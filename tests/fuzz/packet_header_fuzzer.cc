@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "bitstream/sequence_header.h"
-#include "common/byte_reader.h"
 #include "m4d/m4d.h"
+#include "sdk/src/bitstream/sequence_header.h"
+#include "sdk/src/common/byte_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   M4dPacketInfo info;

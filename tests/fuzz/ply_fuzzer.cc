@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "ply/gaussian_ply.h"
-#include "ply/point_cloud_ply.h"
+#include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/ply/point_cloud_ply.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   m4d::GaussianSet set;

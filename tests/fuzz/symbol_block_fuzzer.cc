@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 2) return 0;

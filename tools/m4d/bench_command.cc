@@ -1,4 +1,4 @@
-#include "bench_command.h"
+#include "tools/m4d/bench_command.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "command_status.h"
-#include "encode_command.h"
-#include "number_checks.h"
-#include "stream_check.h"
+#include "tools/m4d/command_status.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/stream_check.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

@@ -1,14 +1,14 @@
-#include "capture_arguments.h"
+#include "tools/m4d/capture_arguments.h"
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
-#include "dataset/capture_check.h"
-#include "dataset/capture_loader.h"
-#include "number_checks.h"
-#include "synthetic_scene/scene_writer.h"
-#include "train/progress_bar.h"
+#include "encoder/src/dataset/capture_check.h"
+#include "encoder/src/dataset/capture_loader.h"
+#include "encoder/src/synthetic/scene_writer.h"
+#include "encoder/src/train/progress_bar.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

@@ -1,14 +1,14 @@
-#include "chunked_encode.h"
+#include "tools/m4d/chunked_encode.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
-#include "image/file_bytes.h"
-#include "io/atomic_file.h"
-#include "mpi_ranks.h"
-#include "sequence_report_output.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/io/atomic_file.h"
+#include "tools/m4d/mpi_ranks.h"
+#include "tools/m4d/sequence_report_output.h"
 
 namespace m4d {
 namespace {

@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "pipeline/encoder_options.h"
-#include "pipeline/frame_report.h"
-#include "pipeline/sequence_encoder.h"
-#include "train/gaussian_model.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/pipeline/encoder_options.h"
+#include "encoder/src/pipeline/frame_report.h"
+#include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

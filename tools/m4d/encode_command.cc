@@ -1,4 +1,4 @@
-#include "encode_command.h"
+#include "tools/m4d/encode_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,23 +8,23 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "chunked_encode.h"
-#include "command_status.h"
-#include "encode_steps.h"
-#include "io/atomic_file.h"
-#include "mpi_ranks.h"
-#include "number_checks.h"
-#include "peak_memory.h"
-#include "pipeline/rate_points.h"
-#include "pipeline/sequence_encoder.h"
-#include "rate_point_name.h"
-#include "rendition_encode.h"
-#include "sequence_report_output.h"
-#include "strategy_arguments.h"
-#include "stream/frame_rate.h"
-#include "stream_check.h"
-#include "video/video_writer.h"
-#include "view_strip.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/pipeline/rate_points.h"
+#include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/stream/frame_rate.h"
+#include "encoder/src/video/video_writer.h"
+#include "tools/m4d/chunked_encode.h"
+#include "tools/m4d/command_status.h"
+#include "tools/m4d/encode_steps.h"
+#include "tools/m4d/mpi_ranks.h"
+#include "tools/m4d/peak_memory.h"
+#include "tools/m4d/rate_point_name.h"
+#include "tools/m4d/rendition_encode.h"
+#include "tools/m4d/sequence_report_output.h"
+#include "tools/m4d/strategy_arguments.h"
+#include "tools/m4d/stream_check.h"
+#include "tools/m4d/view_strip.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 

@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "capture_arguments.h"
-#include "common/status.h"
-#include "pipeline/encoder_options.h"
-#include "pipeline/frame_report.h"
-#include "prune_share_arguments.h"
-#include "rate_weight_arguments.h"
-#include "train/gaussian_model.h"
+#include "encoder/src/pipeline/encoder_options.h"
+#include "encoder/src/pipeline/frame_report.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "sdk/src/common/status.h"
+#include "tools/m4d/capture_arguments.h"
+#include "tools/m4d/prune_share_arguments.h"
+#include "tools/m4d/rate_weight_arguments.h"
 
 namespace m4d {
 

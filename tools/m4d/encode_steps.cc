@@ -1,13 +1,13 @@
-#include "encode_steps.h"
+#include "tools/m4d/encode_steps.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "dataset/up_axis_estimate.h"
-#include "mpi_ranks.h"
-#include "ply/gaussian_ply.h"
-#include "sequence_report_output.h"
-#include "stream/frame_rate.h"
+#include "encoder/src/dataset/up_axis_estimate.h"
+#include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/stream/frame_rate.h"
+#include "tools/m4d/mpi_ranks.h"
+#include "tools/m4d/sequence_report_output.h"
 
 namespace m4d {
 

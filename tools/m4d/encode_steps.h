@@ -6,15 +6,15 @@
 
 #include <string>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "encode_command.h"
-#include "pipeline/encoder_options.h"
-#include "pipeline/sequence_encoder.h"
-#include "prune_share_arguments.h"
-#include "rate_weight_arguments.h"
-#include "train/gaussian_model.h"
-#include "train/progress_bar.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/pipeline/encoder_options.h"
+#include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/progress_bar.h"
+#include "sdk/src/common/status.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/prune_share_arguments.h"
+#include "tools/m4d/rate_weight_arguments.h"
 
 namespace m4d {
 

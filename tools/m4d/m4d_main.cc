@@ -6,15 +6,15 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "ablate_command.h"
-#include "bench_command.h"
-#include "encode_command.h"
 #include "m4d/m4d.h"
-#include "mpi_ranks.h"
-#include "rd_command.h"
-#include "scene_command.h"
-#include "train_command.h"
-#include "usage_exit.h"
+#include "tools/m4d/ablate_command.h"
+#include "tools/m4d/bench_command.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/mpi_ranks.h"
+#include "tools/m4d/rd_command.h"
+#include "tools/m4d/scene_command.h"
+#include "tools/m4d/train_command.h"
+#include "tools/usage_exit.h"
 
 int main(int argc, char** argv) {
   // Tables on stdout and progress on stderr interleave in order even when both go to a file.

@@ -1,4 +1,4 @@
-#include "mpi_ranks.h"
+#include "tools/m4d/mpi_ranks.h"
 
 #include <cstdlib>
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

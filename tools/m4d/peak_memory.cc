@@ -1,4 +1,4 @@
-#include "peak_memory.h"
+#include "tools/m4d/peak_memory.h"
 
 #include <sys/resource.h>
 

@@ -1,11 +1,11 @@
-#include "prune_share_arguments.h"
+#include "tools/m4d/prune_share_arguments.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
-#include "number_checks.h"
-#include "train/progress_bar.h"
+#include "encoder/src/train/progress_bar.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

@@ -9,11 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "train/keyframe_trainer.h"
-#include "train/prune_share_selection.h"
-#include "train/start_size_selection.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/prune_share_selection.h"
+#include "encoder/src/train/start_size_selection.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

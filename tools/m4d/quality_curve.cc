@@ -1,10 +1,10 @@
-#include "quality_curve.h"
+#include "tools/m4d/quality_curve.h"
 
 #include <cstdio>
 #include <utility>
 
-#include "io/atomic_file.h"
-#include "train/view_evaluation.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/train/view_evaluation.h"
 
 namespace m4d {
 

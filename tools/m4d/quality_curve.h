@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "render/render_context.h"
-#include "train/gaussian_model.h"
-#include "train/keyframe_trainer.h"
-#include "train/training_views.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

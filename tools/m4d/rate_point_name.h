@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "pipeline/rate_points.h"
+#include "encoder/src/pipeline/rate_points.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "rate_weight_arguments.h"
+#include "tools/m4d/rate_weight_arguments.h"
 
 #include <cstdio>
 #include <string>
 
-#include "number_checks.h"
-#include "train/progress_bar.h"
+#include "encoder/src/train/progress_bar.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

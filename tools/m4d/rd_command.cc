@@ -1,4 +1,4 @@
-#include "rd_command.h"
+#include "tools/m4d/rd_command.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "command_status.h"
-#include "number_checks.h"
-#include "rd_sweep.h"
+#include "tools/m4d/command_status.h"
+#include "tools/m4d/rd_sweep.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

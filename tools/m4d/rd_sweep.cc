@@ -1,4 +1,4 @@
-#include "rd_sweep.h"
+#include "tools/m4d/rd_sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,15 +7,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "capture_arguments.h"
-#include "io/atomic_file.h"
-#include "pipeline/rate_points.h"
-#include "ply/gaussian_ply.h"
-#include "prune_share_arguments.h"
-#include "train/gaussian_model.h"
-#include "train/keyframe_stage.h"
-#include "train/keyframe_trainer.h"
-#include "train/progress_bar.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/pipeline/rate_points.h"
+#include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/progress_bar.h"
+#include "tools/m4d/capture_arguments.h"
+#include "tools/m4d/prune_share_arguments.h"
 
 namespace m4d {
 namespace {

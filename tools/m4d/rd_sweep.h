@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "encode_command.h"
-#include "metrics/bjontegaard.h"
-#include "sequence_report_output.h"
+#include "encoder/src/metrics/bjontegaard.h"
+#include "sdk/src/common/status.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/sequence_report_output.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "rendition_encode.h"
+#include "tools/m4d/rendition_encode.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -8,17 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "encode_steps.h"
-#include "io/atomic_file.h"
-#include "mpi_ranks.h"
-#include "peak_memory.h"
-#include "pipeline/rate_points.h"
-#include "pipeline/sequence_encoder.h"
-#include "rendition_manifest.h"
-#include "sequence_report_output.h"
-#include "stream/frame_rate.h"
-#include "stream_check.h"
-#include "train/keyframe_stage.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/pipeline/rate_points.h"
+#include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/stream/frame_rate.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "tools/m4d/encode_steps.h"
+#include "tools/m4d/mpi_ranks.h"
+#include "tools/m4d/peak_memory.h"
+#include "tools/m4d/rendition_manifest.h"
+#include "tools/m4d/sequence_report_output.h"
+#include "tools/m4d/stream_check.h"
 
 namespace m4d {
 

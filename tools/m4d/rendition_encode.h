@@ -4,8 +4,8 @@
 #ifndef M4D_TOOLS_M4D_RENDITION_ENCODE_H_
 #define M4D_TOOLS_M4D_RENDITION_ENCODE_H_
 
-#include "common/status.h"
-#include "encode_command.h"
+#include "sdk/src/common/status.h"
+#include "tools/m4d/encode_command.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "rendition_manifest.h"
+#include "tools/m4d/rendition_manifest.h"
 
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "gop_index.h"
+#include "tools/gop_index.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "scene_command.h"
+#include "tools/m4d/scene_command.h"
 
 #include <chrono>
 #include <cstdio>
@@ -6,10 +6,10 @@
 #include <memory>
 #include <string>
 
-#include "command_status.h"
-#include "number_checks.h"
-#include "synthetic_scene/scene_writer.h"
-#include "train/progress_bar.h"
+#include "encoder/src/synthetic/scene_writer.h"
+#include "encoder/src/train/progress_bar.h"
+#include "tools/m4d/command_status.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

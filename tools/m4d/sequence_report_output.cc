@@ -1,10 +1,10 @@
-#include "sequence_report_output.h"
+#include "tools/m4d/sequence_report_output.h"
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
+#include "encoder/src/io/atomic_file.h"
 
 namespace m4d {
 namespace {

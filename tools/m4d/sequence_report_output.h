@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/status.h"
-#include "pipeline/frame_report.h"
+#include "encoder/src/pipeline/frame_report.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,8 +1,8 @@
-#include "strategy_arguments.h"
+#include "tools/m4d/strategy_arguments.h"
 
 #include <cstdio>
 
-#include "train/random_start_schedule.h"
+#include "encoder/src/train/random_start_schedule.h"
 
 namespace m4d {
 

@@ -6,8 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "train/keyframe_stage.h"
-#include "train/keyframe_trainer.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_trainer.h"
 
 namespace m4d {
 

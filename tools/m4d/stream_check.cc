@@ -1,10 +1,10 @@
-#include "stream_check.h"
+#include "tools/m4d/stream_check.h"
 
 #include <chrono>
 #include <string>
 
-#include "common/md5.h"
 #include "m4d/m4d.h"
+#include "sdk/src/common/md5.h"
 
 namespace m4d {
 namespace {

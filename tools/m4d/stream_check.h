@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "pipeline/frame_report.h"
+#include "encoder/src/pipeline/frame_report.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "train_command.h"
+#include "tools/m4d/train_command.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,26 +7,26 @@
 #include <string>
 #include <vector>
 
-#include "capture_arguments.h"
-#include "command_status.h"
-#include "common/byte_writer.h"
-#include "existing_output.h"
-#include "image/png_io.h"
-#include "io/atomic_file.h"
-#include "layers/gaussian_set_writer.h"
-#include "number_checks.h"
-#include "pipeline/rate_points.h"
-#include "ply/gaussian_ply.h"
-#include "prune_share_arguments.h"
-#include "quality_curve.h"
-#include "rate_point_name.h"
-#include "rate_weight_arguments.h"
-#include "strategy_arguments.h"
-#include "train/keyframe_stage.h"
-#include "train/keyframe_trainer.h"
-#include "train/progress_bar.h"
-#include "train/view_evaluation.h"
-#include "view_strip.h"
+#include "encoder/src/image/png_io.h"
+#include "encoder/src/io/atomic_file.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "encoder/src/pipeline/rate_points.h"
+#include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/progress_bar.h"
+#include "encoder/src/train/view_evaluation.h"
+#include "sdk/src/common/byte_writer.h"
+#include "tools/existing_output.h"
+#include "tools/m4d/capture_arguments.h"
+#include "tools/m4d/command_status.h"
+#include "tools/m4d/prune_share_arguments.h"
+#include "tools/m4d/quality_curve.h"
+#include "tools/m4d/rate_point_name.h"
+#include "tools/m4d/rate_weight_arguments.h"
+#include "tools/m4d/strategy_arguments.h"
+#include "tools/m4d/view_strip.h"
+#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {

@@ -1,9 +1,9 @@
-#include "view_strip.h"
+#include "tools/m4d/view_strip.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "image/png_io.h"
+#include "encoder/src/image/png_io.h"
 
 namespace m4d {
 

@@ -1,6 +1,6 @@
 // In WebAssembly there is no headless GL: the renderer draws into a page's WebGL2 context
 // (M4D_RENDER_CURRENT_CONTEXT, m4d_web_renderer.cc). This replaces gl/gl_context.cc there.
-#include "gl/gl_context.h"
+#include "sdk/src/gl/gl_context.h"
 
 namespace m4d {
 

@@ -8,7 +8,7 @@
 #include <new>
 
 #include "m4d/m4d_render.h"
-#include "m4d_web_stream.h"
+#include "web/src/m4d_web_stream.h"
 
 struct M4dWebRenderer {
   EMSCRIPTEN_WEBGL_CONTEXT_HANDLE webgl = 0;

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <new>
 
-#include "m4d_web_stream.h"
+#include "web/src/m4d_web_stream.h"
 
 namespace {
 

@@ -1,9 +1,9 @@
-#include "compensation/compensation_candidates.h"
+#include "encoder/src/compensation/compensation_candidates.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "train/training_random.h"
+#include "encoder/src/train/training_random.h"
 
 namespace m4d {
 namespace {

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

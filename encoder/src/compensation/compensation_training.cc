@@ -1,19 +1,19 @@
-#include "compensation/compensation_training.h"
+#include "encoder/src/compensation/compensation_training.h"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
-#include "metrics/focused_loss.h"
-#include "render/frozen_layer_views.h"
-#include "render/splat_backward.h"
-#include "render/splat_renderer.h"
-#include "render/viewspace_gradient.h"
-#include "train/adam_optimizer.h"
-#include "train/densification.h"
-#include "train/gaussian_model.h"
-#include "train/gaussian_optimizer.h"
-#include "train/training_random.h"
+#include "encoder/src/metrics/focused_loss.h"
+#include "encoder/src/raster/splat_backward.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "encoder/src/raster/viewspace_gradient.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/densification.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/gaussian_optimizer.h"
+#include "encoder/src/train/training_random.h"
 
 namespace m4d {
 namespace {

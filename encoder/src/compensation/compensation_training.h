@@ -20,12 +20,12 @@
 #include <functional>
 #include <vector>
 
-#include "common/status.h"
-#include "compensation/compensation_candidates.h"
-#include "layers/gaussian_set.h"
-#include "render/frozen_layer_views.h"
-#include "train/learning_rate_schedule.h"
-#include "train/training_views.h"
+#include "encoder/src/compensation/compensation_candidates.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/learning_rate_schedule.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

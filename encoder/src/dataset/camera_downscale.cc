@@ -1,4 +1,4 @@
-#include "dataset/camera_downscale.h"
+#include "encoder/src/dataset/camera_downscale.h"
 
 #include <string>
 

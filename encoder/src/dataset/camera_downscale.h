@@ -3,8 +3,8 @@
 #ifndef M4D_ENCODER_DATASET_CAMERA_DOWNSCALE_H_
 #define M4D_ENCODER_DATASET_CAMERA_DOWNSCALE_H_
 
-#include "common/status.h"
-#include "render/camera.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

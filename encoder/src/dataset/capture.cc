@@ -1,4 +1,4 @@
-#include "dataset/capture.h"
+#include "encoder/src/dataset/capture.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "dataset/capture_check.h"
+#include "encoder/src/dataset/capture_check.h"
 
 #include <algorithm>
 #include <string>

@@ -6,8 +6,8 @@
 
 #include <functional>
 
-#include "common/status.h"
-#include "dataset/capture.h"
+#include "encoder/src/dataset/capture.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

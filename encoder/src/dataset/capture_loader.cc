@@ -1,10 +1,10 @@
-#include "dataset/capture_loader.h"
+#include "encoder/src/dataset/capture_loader.h"
 
-#include "dataset/colmap_loader.h"
-#include "dataset/dynamic3dgs_loader.h"
-#include "dataset/file_listing.h"
-#include "dataset/n3dv_loader.h"
-#include "dataset/nerfstudio_loader.h"
+#include "encoder/src/dataset/colmap_loader.h"
+#include "encoder/src/dataset/dynamic3dgs_loader.h"
+#include "encoder/src/dataset/file_listing.h"
+#include "encoder/src/dataset/n3dv_loader.h"
+#include "encoder/src/dataset/nerfstudio_loader.h"
 
 namespace m4d {
 

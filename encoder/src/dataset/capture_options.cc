@@ -1,11 +1,11 @@
-#include "dataset/capture_options.h"
+#include "encoder/src/dataset/capture_options.h"
 
 #include <utility>
 
-#include "dataset/camera_downscale.h"
-#include "dataset/initial_points.h"
-#include "dataset/world_handedness.h"
-#include "image/area_resize.h"
+#include "encoder/src/dataset/camera_downscale.h"
+#include "encoder/src/dataset/initial_points.h"
+#include "encoder/src/dataset/world_handedness.h"
+#include "encoder/src/image/area_resize.h"
 
 namespace m4d {
 namespace {

@@ -1,10 +1,10 @@
-#include "dataset/colmap_binary.h"
+#include "encoder/src/dataset/colmap_binary.h"
 
 #include <cmath>
 #include <string>
 
-#include "image/byte_samples.h"
-#include "io/little_endian_reader.h"
+#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/io/little_endian_reader.h"
 
 namespace m4d {
 namespace {

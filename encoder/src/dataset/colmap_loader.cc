@@ -1,12 +1,12 @@
-#include "dataset/colmap_loader.h"
+#include "encoder/src/dataset/colmap_loader.h"
 
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
-#include "dataset/file_listing.h"
-#include "dataset/image_file_source.h"
-#include "dataset/undistorting_frame_source.h"
+#include "encoder/src/dataset/file_listing.h"
+#include "encoder/src/dataset/image_file_source.h"
+#include "encoder/src/dataset/undistorting_frame_source.h"
 
 namespace m4d {
 

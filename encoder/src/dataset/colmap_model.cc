@@ -1,11 +1,11 @@
-#include "dataset/colmap_model.h"
+#include "encoder/src/dataset/colmap_model.h"
 
 #include <filesystem>
 #include <system_error>
 
-#include "dataset/colmap_binary.h"
-#include "dataset/colmap_text.h"
-#include "image/file_bytes.h"
+#include "encoder/src/dataset/colmap_binary.h"
+#include "encoder/src/dataset/colmap_text.h"
+#include "encoder/src/image/file_bytes.h"
 
 namespace m4d {
 namespace {

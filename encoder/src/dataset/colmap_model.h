@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/lens_distortion.h"
-#include "dataset/point_cloud.h"
+#include "encoder/src/dataset/lens_distortion.h"
+#include "encoder/src/dataset/point_cloud.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "dataset/colmap_text.h"
+#include "encoder/src/dataset/colmap_text.h"
 
 #include <cmath>
 #include <cstdint>

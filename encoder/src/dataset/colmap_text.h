@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/colmap_model.h"
+#include "encoder/src/dataset/colmap_model.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,15 +1,15 @@
-#include "dataset/dynamic3dgs_loader.h"
+#include "encoder/src/dataset/dynamic3dgs_loader.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/file_listing.h"
-#include "dataset/image_file_source.h"
-#include "dataset/json_object.h"
-#include "dataset/npz_archive.h"
-#include "image/file_bytes.h"
+#include "encoder/src/dataset/file_listing.h"
+#include "encoder/src/dataset/image_file_source.h"
+#include "encoder/src/dataset/json_object.h"
+#include "encoder/src/dataset/npz_archive.h"
+#include "encoder/src/image/file_bytes.h"
 
 namespace m4d {
 namespace {

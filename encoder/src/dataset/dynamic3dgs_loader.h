@@ -11,9 +11,9 @@
 
 #include <string>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "dataset/capture_options.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/dataset/capture_options.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

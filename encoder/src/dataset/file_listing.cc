@@ -1,4 +1,4 @@
-#include "dataset/file_listing.h"
+#include "encoder/src/dataset/file_listing.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,7 +1,7 @@
-#include "dataset/image_file_source.h"
+#include "encoder/src/dataset/image_file_source.h"
 
-#include "image/image_file.h"
-#include "image/rgb_conversion.h"
+#include "encoder/src/image/image_file.h"
+#include "encoder/src/image/rgb_conversion.h"
 
 namespace m4d {
 

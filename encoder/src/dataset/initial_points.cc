@@ -1,10 +1,10 @@
-#include "dataset/initial_points.h"
+#include "encoder/src/dataset/initial_points.h"
 
 #include <filesystem>
 #include <system_error>
 
-#include "dataset/colmap_model.h"
-#include "ply/point_cloud_ply.h"
+#include "encoder/src/dataset/colmap_model.h"
+#include "encoder/src/ply/point_cloud_ply.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "dataset/json_object.h"
+#include "encoder/src/dataset/json_object.h"
 
 #include <algorithm>
 

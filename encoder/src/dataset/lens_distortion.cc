@@ -1,4 +1,4 @@
-#include "dataset/lens_distortion.h"
+#include "encoder/src/dataset/lens_distortion.h"
 
 #include <algorithm>
 #include <cmath>

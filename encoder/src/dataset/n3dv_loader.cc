@@ -1,14 +1,14 @@
-#include "dataset/n3dv_loader.h"
+#include "encoder/src/dataset/n3dv_loader.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "dataset/colmap_model.h"
-#include "dataset/file_listing.h"
-#include "dataset/image_file_source.h"
-#include "dataset/npy_array.h"
-#include "dataset/video_frame_source.h"
-#include "image/image_file.h"
+#include "encoder/src/dataset/colmap_model.h"
+#include "encoder/src/dataset/file_listing.h"
+#include "encoder/src/dataset/image_file_source.h"
+#include "encoder/src/dataset/npy_array.h"
+#include "encoder/src/dataset/video_frame_source.h"
+#include "encoder/src/image/image_file.h"
 
 namespace m4d {
 namespace {

@@ -1,4 +1,4 @@
-#include "dataset/nerfstudio_loader.h"
+#include "encoder/src/dataset/nerfstudio_loader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/file_listing.h"
-#include "dataset/image_file_source.h"
-#include "dataset/json_object.h"
-#include "dataset/undistorting_frame_source.h"
-#include "image/file_bytes.h"
-#include "ply/point_cloud_ply.h"
+#include "encoder/src/dataset/file_listing.h"
+#include "encoder/src/dataset/image_file_source.h"
+#include "encoder/src/dataset/json_object.h"
+#include "encoder/src/dataset/undistorting_frame_source.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/ply/point_cloud_ply.h"
 
 namespace m4d {
 namespace {

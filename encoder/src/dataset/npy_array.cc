@@ -1,9 +1,9 @@
-#include "dataset/npy_array.h"
+#include "encoder/src/dataset/npy_array.h"
 
 #include <cstring>
 
-#include "image/file_bytes.h"
-#include "io/little_endian_reader.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/io/little_endian_reader.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "npy export assumes a little-endian host");
 

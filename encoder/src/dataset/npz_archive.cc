@@ -1,9 +1,9 @@
-#include "dataset/npz_archive.h"
+#include "encoder/src/dataset/npz_archive.h"
 
 #include <vector>
 
-#include "dataset/zip_archive.h"
-#include "image/file_bytes.h"
+#include "encoder/src/dataset/zip_archive.h"
+#include "encoder/src/image/file_bytes.h"
 
 namespace m4d {
 namespace {

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "common/status.h"
-#include "dataset/npy_array.h"
+#include "encoder/src/dataset/npy_array.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

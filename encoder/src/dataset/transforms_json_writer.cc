@@ -1,9 +1,9 @@
-#include "dataset/transforms_json_writer.h"
+#include "encoder/src/dataset/transforms_json_writer.h"
 
 #include <nlohmann/json.hpp>
 
-#include "image/file_bytes.h"
-#include "io/shortest_decimal.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/io/shortest_decimal.h"
 
 namespace m4d {
 namespace {

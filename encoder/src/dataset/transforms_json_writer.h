@@ -1,6 +1,6 @@
 // Writing a fixed-rig multi-view capture's transforms.json (nerfstudio's layout with the
 // "camera" and "time_index" extensions; the layout is described in
-// encoder/src/synthetic_scene/README.md).
+// encoder/src/synthetic/README.md).
 #ifndef M4D_ENCODER_DATASET_TRANSFORMS_JSON_WRITER_H_
 #define M4D_ENCODER_DATASET_TRANSFORMS_JSON_WRITER_H_
 
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/lens_distortion.h"
-#include "render/camera.h"
+#include "encoder/src/dataset/lens_distortion.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

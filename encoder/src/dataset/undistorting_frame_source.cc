@@ -1,4 +1,4 @@
-#include "dataset/undistorting_frame_source.h"
+#include "encoder/src/dataset/undistorting_frame_source.h"
 
 #include <algorithm>
 #include <cstdio>

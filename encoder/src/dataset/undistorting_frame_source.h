@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "dataset/lens_distortion.h"
-#include "dataset/undistortion.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/dataset/lens_distortion.h"
+#include "encoder/src/dataset/undistortion.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

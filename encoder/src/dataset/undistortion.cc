@@ -1,10 +1,10 @@
-#include "dataset/undistortion.h"
+#include "encoder/src/dataset/undistortion.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "metrics/parallel_rows.h"
+#include "encoder/src/metrics/parallel_rows.h"
 
 namespace m4d {
 namespace {

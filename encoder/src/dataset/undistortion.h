@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/lens_distortion.h"
-#include "image/image.h"
-#include "render/camera.h"
+#include "encoder/src/dataset/lens_distortion.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

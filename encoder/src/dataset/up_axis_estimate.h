@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
+#include "encoder/src/dataset/capture.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "dataset/video_frame_source.h"
+#include "encoder/src/dataset/video_frame_source.h"
 
 namespace m4d {
 

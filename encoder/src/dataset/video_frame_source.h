@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "video/video_reader.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/video/video_reader.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "dataset/world_handedness.h"
+#include "encoder/src/dataset/world_handedness.h"
 
 #include <string>
 

@@ -8,8 +8,8 @@
 #ifndef M4D_ENCODER_DATASET_WORLD_HANDEDNESS_H_
 #define M4D_ENCODER_DATASET_WORLD_HANDEDNESS_H_
 
-#include "common/status.h"
-#include "dataset/capture.h"
+#include "encoder/src/dataset/capture.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,11 +1,11 @@
-#include "dataset/zip_archive.h"
+#include "encoder/src/dataset/zip_archive.h"
 
 #include <algorithm>
 #include <climits>
 
 #include <zlib.h>
 
-#include "io/little_endian_reader.h"
+#include "encoder/src/io/little_endian_reader.h"
 
 namespace m4d {
 namespace {

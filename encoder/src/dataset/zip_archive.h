@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

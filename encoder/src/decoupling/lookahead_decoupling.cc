@@ -1,13 +1,13 @@
-#include "decoupling/lookahead_decoupling.h"
+#include "encoder/src/decoupling/lookahead_decoupling.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "decoupling/lookahead_measures.h"
-#include "geometry/nearest_neighbours.h"
-#include "render/splat_renderer.h"
-#include "train/gaussian_optimizer.h"
-#include "train/view_evaluation.h"
+#include "encoder/src/decoupling/lookahead_measures.h"
+#include "encoder/src/geometry/nearest_neighbours.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "encoder/src/train/gaussian_optimizer.h"
+#include "encoder/src/train/view_evaluation.h"
 
 namespace m4d {
 namespace {

@@ -22,12 +22,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/status.h"
-#include "decoupling/motion_classification.h"
-#include "decoupling/temporal_change.h"
-#include "train/gaussian_model.h"
-#include "train/keyframe_trainer.h"
-#include "train/training_views.h"
+#include "encoder/src/decoupling/motion_classification.h"
+#include "encoder/src/decoupling/temporal_change.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "decoupling/lookahead_measures.h"
+#include "encoder/src/decoupling/lookahead_measures.h"
 
 #include <cmath>
 #include <limits>

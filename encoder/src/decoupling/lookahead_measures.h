@@ -14,8 +14,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "decoupling/motion_classification.h"
-#include "render/camera.h"
+#include "encoder/src/decoupling/motion_classification.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "decoupling/motion_classification.h"
+#include "encoder/src/decoupling/motion_classification.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "decoupling/temporal_change.h"
+#include "encoder/src/decoupling/temporal_change.h"
 
 #include <algorithm>
 #include <cmath>

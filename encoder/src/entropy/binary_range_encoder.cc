@@ -1,7 +1,7 @@
 // The range encoder keeps the interval's low end in 33 bits: a carry out of bit 32 adds one to
 // the byte last held back and turns the 0xFF bytes after it into zeros, so it holds back a byte
 // and the run of 0xFF bytes after it (cache_, cache_size_) until no carry can reach them.
-#include "entropy/binary_range_encoder.h"
+#include "encoder/src/entropy/binary_range_encoder.h"
 
 namespace m4d {
 

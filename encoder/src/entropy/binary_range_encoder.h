@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "entropy/binary_range_decoder.h"
+#include "sdk/src/entropy/binary_range_decoder.h"
 
 namespace m4d {
 

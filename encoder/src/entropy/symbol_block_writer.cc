@@ -1,4 +1,4 @@
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

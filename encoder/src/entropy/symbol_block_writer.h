@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/byte_writer.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 

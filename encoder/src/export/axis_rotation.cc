@@ -1,4 +1,4 @@
-#include "export/axis_rotation.h"
+#include "encoder/src/export/axis_rotation.h"
 
 namespace m4d {
 namespace {

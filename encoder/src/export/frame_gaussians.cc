@@ -1,4 +1,4 @@
-#include "export/frame_gaussians.h"
+#include "encoder/src/export/frame_gaussians.h"
 
 #include <algorithm>
 

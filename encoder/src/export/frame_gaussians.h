@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "common/status.h"
-#include "layers/gaussian_set.h"
 #include "m4d/m4d.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,11 +1,11 @@
-#include "export/gltf_splat_writer.h"
+#include "encoder/src/export/gltf_splat_writer.h"
 
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "export/srgb.h"
-#include "io/atomic_file.h"
+#include "encoder/src/export/srgb.h"
+#include "encoder/src/io/atomic_file.h"
 
 namespace m4d {
 namespace {

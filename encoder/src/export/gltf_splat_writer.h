@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "layers/gaussian_set.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

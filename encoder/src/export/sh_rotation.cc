@@ -1,4 +1,4 @@
-#include "export/sh_rotation.h"
+#include "encoder/src/export/sh_rotation.h"
 
 #include <cmath>
 

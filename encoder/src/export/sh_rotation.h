@@ -6,7 +6,7 @@
 #ifndef M4D_ENCODER_EXPORT_SH_ROTATION_H_
 #define M4D_ENCODER_EXPORT_SH_ROTATION_H_
 
-#include "render/sh_evaluation.h"
+#include "sdk/src/render/sh_evaluation.h"
 
 namespace m4d {
 

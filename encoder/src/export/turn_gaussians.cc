@@ -1,8 +1,8 @@
-#include "export/turn_gaussians.h"
+#include "encoder/src/export/turn_gaussians.h"
 
 #include <cmath>
 
-#include "export/sh_rotation.h"
+#include "encoder/src/export/sh_rotation.h"
 
 namespace m4d {
 

@@ -4,8 +4,8 @@
 #ifndef M4D_ENCODER_EXPORT_TURN_GAUSSIANS_H_
 #define M4D_ENCODER_EXPORT_TURN_GAUSSIANS_H_
 
-#include "export/axis_rotation.h"
-#include "layers/gaussian_set.h"
+#include "encoder/src/export/axis_rotation.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "geometry/nearest_neighbours.h"
+#include "encoder/src/geometry/nearest_neighbours.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "common/thread_pool.h"
+#include "sdk/src/common/thread_pool.h"
 
 namespace m4d {
 namespace {

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "image/area_resize.h"
+#include "encoder/src/image/area_resize.h"
 
 #include <algorithm>
 #include <cstddef>

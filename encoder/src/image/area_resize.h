@@ -3,8 +3,8 @@
 #ifndef M4D_ENCODER_IMAGE_AREA_RESIZE_H_
 #define M4D_ENCODER_IMAGE_AREA_RESIZE_H_
 
-#include "common/status.h"
-#include "image/image.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "image/file_bytes.h"
+#include "encoder/src/image/file_bytes.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "io/atomic_file.h"
+#include "encoder/src/io/atomic_file.h"
 
 namespace m4d {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "image/image.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

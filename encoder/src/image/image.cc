@@ -1,4 +1,4 @@
-#include "image/image.h"
+#include "encoder/src/image/image.h"
 
 namespace m4d {
 

@@ -1,12 +1,12 @@
-#include "image/image_file.h"
+#include "encoder/src/image/image_file.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <initializer_list>
 
-#include "image/file_bytes.h"
-#include "image/jpeg_io.h"
-#include "image/png_io.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image/jpeg_io.h"
+#include "encoder/src/image/png_io.h"
 
 namespace m4d {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "common/status.h"
-#include "image/image.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

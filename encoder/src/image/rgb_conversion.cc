@@ -1,4 +1,4 @@
-#include "image/rgb_conversion.h"
+#include "encoder/src/image/rgb_conversion.h"
 
 #include <cstddef>
 #include <utility>

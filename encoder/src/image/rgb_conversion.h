@@ -2,8 +2,8 @@
 #ifndef M4D_ENCODER_IMAGE_RGB_CONVERSION_H_
 #define M4D_ENCODER_IMAGE_RGB_CONVERSION_H_
 
-#include "common/status.h"
-#include "image/image.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

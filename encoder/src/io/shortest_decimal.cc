@@ -1,4 +1,4 @@
-#include "io/shortest_decimal.h"
+#include "encoder/src/io/shortest_decimal.h"
 
 #include <cstdio>
 #include <cstdlib>

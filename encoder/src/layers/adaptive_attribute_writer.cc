@@ -1,7 +1,7 @@
 // Encoding of adaptive_attributes() (bitstream-spec 5.7).
-#include "layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/adaptive_attribute_writer.h"
 
-#include "entropy/binary_range_encoder.h"
+#include "encoder/src/entropy/binary_range_encoder.h"
 
 namespace m4d {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "layers/adaptive_attributes.h"
+#include "sdk/src/layers/adaptive_attributes.h"
 
 namespace m4d {
 

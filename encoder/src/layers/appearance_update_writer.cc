@@ -1,9 +1,9 @@
-#include "layers/appearance_update_writer.h"
+#include "encoder/src/layers/appearance_update_writer.h"
 
 #include <cmath>
 #include <cstdlib>
 
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
 
 namespace m4d {
 

@@ -1,5 +1,5 @@
 // Codebook fitting (bitstream-spec 5.4, version 0.6).
-#include "layers/codebook.h"
+#include "encoder/src/layers/codebook.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 // while the sequential method entropy-codes each attribute. The Gaussians are put in Morton
 // order of their quantized positions first: the order octree_positions() (version 0.7)
 // decodes them in, and before it the order in which Draco's delta prediction worked on them.
-#include "layers/gaussian_set_writer.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
 
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/expert_encode.h>
@@ -19,14 +19,14 @@
 #include <utility>
 #include <vector>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_writer.h"
-#include "layers/adaptive_attribute_writer.h"
-#include "layers/codebook.h"
-#include "layers/gaussian_set_reader.h"
-#include "layers/octree_position_writer.h"
-#include "layers/rotation_symmetry.h"
-#include "layers/smallest_three.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/codebook.h"
+#include "encoder/src/layers/octree_position_writer.h"
+#include "encoder/src/layers/rotation_symmetry.h"
+#include "encoder/src/layers/smallest_three.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/layers/gaussian_set_reader.h"
 
 namespace m4d {
 namespace {

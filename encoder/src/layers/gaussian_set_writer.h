@@ -3,10 +3,10 @@
 #ifndef M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
 #define M4D_ENCODER_LAYERS_GAUSSIAN_SET_WRITER_H_
 
-#include "common/byte_writer.h"
-#include "common/status.h"
-#include "layers/gaussian_set.h"
-#include "layers/gaussian_set_syntax.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_set_syntax.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "layers/mlp_writer.h"
+#include "encoder/src/layers/mlp_writer.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

@@ -3,10 +3,10 @@
 #ifndef M4D_ENCODER_LAYERS_MLP_WRITER_H_
 #define M4D_ENCODER_LAYERS_MLP_WRITER_H_
 
-#include "common/byte_writer.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/mlp_weights.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "layers/motion_grid_writer.h"
+#include "encoder/src/layers/motion_grid_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
 
 namespace m4d {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "common/byte_writer.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/motion_config.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

@@ -1,9 +1,9 @@
-#include "layers/octree_position_writer.h"
+#include "encoder/src/layers/octree_position_writer.h"
 
 #include <vector>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

@@ -1,4 +1,4 @@
-#include "layers/rotation_symmetry.h"
+#include "encoder/src/layers/rotation_symmetry.h"
 
 #include <array>
 #include <cmath>

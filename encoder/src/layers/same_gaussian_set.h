@@ -2,7 +2,7 @@
 #ifndef M4D_ENCODER_LAYERS_SAME_GAUSSIAN_SET_H_
 #define M4D_ENCODER_LAYERS_SAME_GAUSSIAN_SET_H_
 
-#include "layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

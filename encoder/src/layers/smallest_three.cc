@@ -1,4 +1,4 @@
-#include "layers/smallest_three.h"
+#include "encoder/src/layers/smallest_three.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "metrics/bjontegaard.h"
+#include "encoder/src/metrics/bjontegaard.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-#include "metrics/colour_fitted_psnr.h"
+#include "encoder/src/metrics/colour_fitted_psnr.h"
 
 #include <algorithm>
 #include <cstddef>
 
-#include "metrics/psnr.h"
+#include "encoder/src/metrics/psnr.h"
 
 namespace m4d {
 namespace {

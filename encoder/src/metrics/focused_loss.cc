@@ -1,9 +1,9 @@
-#include "metrics/focused_loss.h"
+#include "encoder/src/metrics/focused_loss.h"
 
 #include <algorithm>
 #include <cstring>
 
-#include "render/projection_constants.h"
+#include "sdk/src/render/projection_constants.h"
 
 namespace m4d {
 namespace {

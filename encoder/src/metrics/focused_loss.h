@@ -13,10 +13,10 @@
 #ifndef M4D_ENCODER_METRICS_FOCUSED_LOSS_H_
 #define M4D_ENCODER_METRICS_FOCUSED_LOSS_H_
 
-#include "common/status.h"
-#include "image/image.h"
-#include "metrics/photometric_loss.h"
-#include "render/tile_focus.h"
+#include "encoder/src/image/image.h"
+#include "encoder/src/metrics/photometric_loss.h"
+#include "encoder/src/raster/tile_focus.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

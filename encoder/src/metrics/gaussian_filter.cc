@@ -1,4 +1,4 @@
-#include "metrics/gaussian_filter.h"
+#include "encoder/src/metrics/gaussian_filter.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "metrics/l1_loss.h"
+#include "encoder/src/metrics/l1_loss.h"
 
 #include <cmath>
 #include <cstddef>

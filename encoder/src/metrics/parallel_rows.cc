@@ -1,4 +1,4 @@
-#include "metrics/parallel_rows.h"
+#include "encoder/src/metrics/parallel_rows.h"
 
 #include <algorithm>
 #include <thread>

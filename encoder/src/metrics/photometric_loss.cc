@@ -1,9 +1,9 @@
-#include "metrics/photometric_loss.h"
+#include "encoder/src/metrics/photometric_loss.h"
 
 #include <cstddef>
 
-#include "metrics/l1_loss.h"
-#include "metrics/ssim.h"
+#include "encoder/src/metrics/l1_loss.h"
+#include "encoder/src/metrics/ssim.h"
 
 namespace m4d {
 

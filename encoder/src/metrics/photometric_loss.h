@@ -5,9 +5,9 @@
 #ifndef M4D_ENCODER_METRICS_PHOTOMETRIC_LOSS_H_
 #define M4D_ENCODER_METRICS_PHOTOMETRIC_LOSS_H_
 
-#include "common/status.h"
-#include "image/image.h"
-#include "metrics/ssim.h"
+#include "encoder/src/image/image.h"
+#include "encoder/src/metrics/ssim.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "metrics/psnr.h"
+#include "encoder/src/metrics/psnr.h"
 
 #include <cmath>
 #include <cstddef>

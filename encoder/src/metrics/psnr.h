@@ -4,8 +4,8 @@
 #ifndef M4D_ENCODER_METRICS_PSNR_H_
 #define M4D_ENCODER_METRICS_PSNR_H_
 
-#include "common/status.h"
-#include "image/image.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

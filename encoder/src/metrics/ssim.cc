@@ -1,9 +1,9 @@
-#include "metrics/ssim.h"
+#include "encoder/src/metrics/ssim.h"
 
 #include <cstddef>
 
-#include "metrics/gaussian_filter.h"
-#include "metrics/parallel_rows.h"
+#include "encoder/src/metrics/gaussian_filter.h"
+#include "encoder/src/metrics/parallel_rows.h"
 
 // The gradient. With m = G*x, e_xx = G*(x^2), e_xy = G*(x y) at each pixel p, SSIM(p) =
 // A1 A2 / (B1 B2) where A1 = 2 m m_y + C1, A2 = 2 (e_xy - m m_y) + C2, B1 = m^2 + m_y^2 + C1,

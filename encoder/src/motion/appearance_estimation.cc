@@ -1,9 +1,9 @@
-#include "motion/appearance_estimation.h"
+#include "encoder/src/motion/appearance_estimation.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "layers/appearance_update_writer.h"
+#include "encoder/src/layers/appearance_update_writer.h"
 
 namespace m4d {
 

@@ -15,10 +15,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "layers/gaussian_set.h"
-#include "motion/logistic_entropy_model.h"
-#include "train/adam_optimizer.h"
-#include "train/training_random.h"
+#include "encoder/src/motion/logistic_entropy_model.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/training_random.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "motion/logistic_entropy_model.h"
+#include "encoder/src/motion/logistic_entropy_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,15 +1,15 @@
-#include "motion/motion_estimation.h"
+#include "encoder/src/motion/motion_estimation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
 
-#include "motion/appearance_estimation.h"
-#include "motion/view_batch_gradients.h"
-#include "render/frozen_layer_views.h"
-#include "train/adam_optimizer.h"
-#include "train/training_random.h"
+#include "encoder/src/motion/appearance_estimation.h"
+#include "encoder/src/motion/view_batch_gradients.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/training_random.h"
 
 namespace m4d {
 namespace {

@@ -22,18 +22,18 @@
 #include <memory>
 #include <vector>
 
-#include "common/status.h"
-#include "common/thread_pool.h"
-#include "layers/gaussian_set.h"
-#include "layers/motion_config.h"
-#include "metrics/photometric_loss.h"
-#include "motion/logistic_entropy_model.h"
-#include "motion/motion_field.h"
-#include "motion/motion_stencil.h"
-#include "render/frozen_layer_views.h"
-#include "render/render_context.h"
-#include "render/splat_backward.h"
-#include "train/training_views.h"
+#include "encoder/src/metrics/photometric_loss.h"
+#include "encoder/src/motion/logistic_entropy_model.h"
+#include "encoder/src/motion/motion_field.h"
+#include "encoder/src/motion/motion_stencil.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/raster/splat_backward.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/common/thread_pool.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

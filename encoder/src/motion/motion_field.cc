@@ -1,8 +1,8 @@
-#include "motion/motion_field.h"
+#include "encoder/src/motion/motion_field.h"
 
 #include <cstring>
 
-#include "motion/rigid_update.h"
+#include "encoder/src/motion/rigid_update.h"
 
 namespace m4d {
 

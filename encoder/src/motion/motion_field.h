@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "layers/mlp_weights.h"
-#include "motion/motion_mlp.h"
-#include "motion/motion_stencil.h"
+#include "encoder/src/motion/motion_mlp.h"
+#include "encoder/src/motion/motion_stencil.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 namespace m4d {
 

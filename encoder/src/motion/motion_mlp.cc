@@ -1,4 +1,4 @@
-#include "motion/motion_mlp.h"
+#include "encoder/src/motion/motion_mlp.h"
 
 #include <cmath>
 #include <random>

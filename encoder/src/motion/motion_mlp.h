@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "layers/mlp_weights.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "motion/motion_stencil.h"
+#include "encoder/src/motion/motion_stencil.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "layers/motion_config.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

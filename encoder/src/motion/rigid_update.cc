@@ -1,4 +1,4 @@
-#include "motion/rigid_update.h"
+#include "encoder/src/motion/rigid_update.h"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
-#include "motion/view_batch_gradients.h"
+#include "encoder/src/motion/view_batch_gradients.h"
 
 #include <algorithm>
 
-#include "render/splat_renderer.h"
+#include "encoder/src/raster/splat_renderer.h"
 
 namespace m4d {
 

@@ -10,15 +10,15 @@
 #include <memory>
 #include <vector>
 
-#include "common/status.h"
-#include "common/thread_pool.h"
-#include "metrics/focused_loss.h"
-#include "render/frozen_layer_views.h"
-#include "render/gaussian_layer_view.h"
-#include "render/render_context.h"
-#include "render/render_settings.h"
-#include "render/splat_backward.h"
-#include "train/training_views.h"
+#include "encoder/src/metrics/focused_loss.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/raster/splat_backward.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/common/thread_pool.h"
+#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

@@ -9,13 +9,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "compensation/compensation_candidates.h"
-#include "compensation/compensation_training.h"
-#include "decoupling/lookahead_decoupling.h"
-#include "layers/gaussian_set_writer.h"
-#include "layers/motion_config.h"
-#include "motion/motion_estimation.h"
-#include "train/keyframe_trainer.h"
+#include "encoder/src/compensation/compensation_candidates.h"
+#include "encoder/src/compensation/compensation_training.h"
+#include "encoder/src/decoupling/lookahead_decoupling.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "encoder/src/motion/motion_estimation.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "stream/stream_writer.h"
+#include "encoder/src/stream/stream_writer.h"
 
 namespace m4d {
 

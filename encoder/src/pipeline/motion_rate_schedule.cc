@@ -1,4 +1,4 @@
-#include "pipeline/motion_rate_schedule.h"
+#include "encoder/src/pipeline/motion_rate_schedule.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "pipeline/rate_points.h"
+#include "encoder/src/pipeline/rate_points.h"
 
 #include <cmath>
 #include <cstdio>

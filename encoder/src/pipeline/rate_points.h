@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "pipeline/encoder_options.h"
+#include "encoder/src/pipeline/encoder_options.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,12 +1,12 @@
-#include "pipeline/retraining_growth.h"
+#include "encoder/src/pipeline/retraining_growth.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "train/photo_consistent_points.h"
-#include "train/point_initialisation.h"
-#include "train/view_evaluation.h"
+#include "encoder/src/train/photo_consistent_points.h"
+#include "encoder/src/train/point_initialisation.h"
+#include "encoder/src/train/view_evaluation.h"
 
 namespace m4d {
 namespace {

@@ -22,11 +22,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/status.h"
-#include "decoupling/temporal_change.h"
-#include "render/render_settings.h"
-#include "train/gaussian_model.h"
-#include "train/training_views.h"
+#include "encoder/src/decoupling/temporal_change.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -20,18 +20,18 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "image/image.h"
-#include "layers/appearance_update.h"
-#include "motion/motion_estimation.h"
-#include "pipeline/encoder_options.h"
-#include "pipeline/frame_report.h"
-#include "render/render_settings.h"
-#include "stream/stream_writer.h"
-#include "train/gaussian_model.h"
-#include "train/progress_bar.h"
-#include "train/training_views.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/image/image.h"
+#include "encoder/src/motion/motion_estimation.h"
+#include "encoder/src/pipeline/encoder_options.h"
+#include "encoder/src/pipeline/frame_report.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/stream/stream_writer.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/progress_bar.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/appearance_update.h"
 
 namespace m4d {
 

@@ -1,12 +1,12 @@
-#include "pipeline/training_psnr_meter.h"
+#include "encoder/src/pipeline/training_psnr_meter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "layers/same_gaussian_set.h"
-#include "render/projection_constants.h"
-#include "render/splat_renderer.h"
+#include "encoder/src/layers/same_gaussian_set.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "sdk/src/render/projection_constants.h"
 
 namespace m4d {
 namespace {

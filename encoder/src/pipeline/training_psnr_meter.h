@@ -12,12 +12,12 @@
 
 #include <vector>
 
-#include "common/status.h"
-#include "layers/gaussian_set.h"
-#include "render/frozen_layer_views.h"
-#include "render/render_context.h"
-#include "render/render_settings.h"
-#include "train/training_views.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/train/frozen_layer_views.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,11 +1,11 @@
-#include "ply/gaussian_ply.h"
+#include "encoder/src/ply/gaussian_ply.h"
 
 #include <cmath>
 #include <cstring>
 
-#include "image/file_bytes.h"
-#include "ply/ply_header.h"
-#include "ply/ply_reader.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/ply/ply_header.h"
+#include "encoder/src/ply/ply_reader.h"
 
 // Export copies floats as they are in memory.
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "PLY export assumes a little-endian host");

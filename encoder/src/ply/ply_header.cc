@@ -1,4 +1,4 @@
-#include "ply/ply_header.h"
+#include "encoder/src/ply/ply_header.h"
 
 #include <cstring>
 #include <sstream>

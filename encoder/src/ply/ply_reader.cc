@@ -1,4 +1,4 @@
-#include "ply/ply_reader.h"
+#include "encoder/src/ply/ply_reader.h"
 
 #include <cmath>
 #include <cstdlib>

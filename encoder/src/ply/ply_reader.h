@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "ply/ply_header.h"
+#include "encoder/src/ply/ply_header.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

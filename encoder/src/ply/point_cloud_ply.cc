@@ -1,12 +1,12 @@
-#include "ply/point_cloud_ply.h"
+#include "encoder/src/ply/point_cloud_ply.h"
 
 #include <cmath>
 #include <cstring>
 
-#include "image/byte_samples.h"
-#include "image/file_bytes.h"
-#include "ply/ply_header.h"
-#include "ply/ply_reader.h"
+#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/ply/ply_header.h"
+#include "encoder/src/ply/ply_reader.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "PLY export assumes a little-endian host");
 

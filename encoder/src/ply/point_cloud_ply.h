@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/point_cloud.h"
+#include "encoder/src/dataset/point_cloud.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

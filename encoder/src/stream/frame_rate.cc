@@ -1,4 +1,4 @@
-#include "stream/frame_rate.h"
+#include "encoder/src/stream/frame_rate.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,6 +1,6 @@
-#include "stream/sequence_header_writer.h"
+#include "encoder/src/stream/sequence_header_writer.h"
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 

@@ -2,8 +2,8 @@
 #ifndef M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
 #define M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
 
-#include "bitstream/sequence_header.h"
-#include "common/byte_writer.h"
+#include "sdk/src/bitstream/sequence_header.h"
+#include "sdk/src/common/byte_writer.h"
 
 namespace m4d {
 

@@ -1,14 +1,14 @@
-#include "stream/stream_writer.h"
+#include "encoder/src/stream/stream_writer.h"
 
 #include <string>
 
-#include "bitstream/packet_header.h"
-#include "common/byte_writer.h"
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_writer.h"
-#include "layers/appearance_update_writer.h"
-#include "layers/mlp_writer.h"
-#include "stream/sequence_header_writer.h"
+#include "encoder/src/entropy/symbol_block_writer.h"
+#include "encoder/src/layers/appearance_update_writer.h"
+#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/stream/sequence_header_writer.h"
+#include "sdk/src/bitstream/packet_header.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

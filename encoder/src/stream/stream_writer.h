@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "bitstream/sequence_header.h"
-#include "decode/decoder.h"
-#include "layers/gaussian_set_writer.h"
-#include "layers/mlp_weights.h"
-#include "layers/motion_grid_writer.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "encoder/src/layers/motion_grid_writer.h"
+#include "sdk/src/bitstream/sequence_header.h"
+#include "sdk/src/decode/decoder.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "train/adam_optimizer.h"
+#include "encoder/src/train/adam_optimizer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "train/row_edit.h"
+#include "encoder/src/train/row_edit.h"
 
 namespace m4d {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "common/thread_pool.h"
+#include "sdk/src/common/thread_pool.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "train/adaptive_density_control.h"
+#include "encoder/src/train/adaptive_density_control.h"
 
 namespace m4d {
 

@@ -9,8 +9,8 @@
 
 #include <memory>
 
-#include "train/densification.h"
-#include "train/densification_strategy.h"
+#include "encoder/src/train/densification.h"
+#include "encoder/src/train/densification_strategy.h"
 
 namespace m4d {
 

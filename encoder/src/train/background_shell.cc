@@ -1,11 +1,11 @@
-#include "train/background_shell.h"
+#include "encoder/src/train/background_shell.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "train/view_sampling.h"
+#include "encoder/src/train/view_sampling.h"
 
 namespace m4d {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <cstddef>
 
-#include "common/status.h"
-#include "dataset/point_cloud.h"
-#include "train/training_views.h"
+#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

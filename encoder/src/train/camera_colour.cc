@@ -1,4 +1,4 @@
-#include "train/camera_colour.h"
+#include "encoder/src/train/camera_colour.h"
 
 #include <cmath>
 

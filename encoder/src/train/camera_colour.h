@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "image/image.h"
+#include "encoder/src/image/image.h"
 
 namespace m4d {
 

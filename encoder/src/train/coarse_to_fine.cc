@@ -1,10 +1,10 @@
-#include "train/coarse_to_fine.h"
+#include "encoder/src/train/coarse_to_fine.h"
 
 #include <algorithm>
 #include <cstdint>
 
-#include "dataset/camera_downscale.h"
-#include "image/area_resize.h"
+#include "encoder/src/dataset/camera_downscale.h"
+#include "encoder/src/image/area_resize.h"
 
 namespace m4d {
 namespace {

@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "common/status.h"
-#include "train/training_views.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,9 +1,9 @@
-#include "train/densification.h"
+#include "encoder/src/train/densification.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "train/row_edit.h"
+#include "encoder/src/train/row_edit.h"
 
 namespace m4d {
 namespace {

@@ -16,13 +16,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/status.h"
-#include "render/projected_splats.h"
-#include "render/render_settings.h"
-#include "render/viewspace_gradient.h"
-#include "train/adam_optimizer.h"
-#include "train/gaussian_model.h"
-#include "train/training_random.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/raster/viewspace_gradient.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/training_random.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/projected_splats.h"
 
 namespace m4d {
 

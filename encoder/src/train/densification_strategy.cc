@@ -1,4 +1,4 @@
-#include "train/densification_strategy.h"
+#include "encoder/src/train/densification_strategy.h"
 
 namespace m4d {
 

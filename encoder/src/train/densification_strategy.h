@@ -17,11 +17,11 @@
 #include <string>
 #include <utility>
 
-#include "common/status.h"
-#include "render/projected_splats.h"
-#include "train/adam_optimizer.h"
-#include "train/gaussian_model.h"
-#include "train/training_random.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/training_random.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/projected_splats.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "train/gaussian_model.h"
+#include "encoder/src/train/gaussian_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "train/row_edit.h"
+#include "encoder/src/train/row_edit.h"
 
 namespace m4d {
 

@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/status.h"
-#include "layers/gaussian_set.h"
-#include "render/gaussian_layer_view.h"
-#include "render/projection_backward.h"
+#include "encoder/src/raster/projection_backward.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "train/gaussian_optimizer.h"
+#include "encoder/src/train/gaussian_optimizer.h"
 
 namespace m4d {
 

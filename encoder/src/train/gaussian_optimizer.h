@@ -4,10 +4,10 @@
 #ifndef M4D_ENCODER_TRAIN_GAUSSIAN_OPTIMIZER_H_
 #define M4D_ENCODER_TRAIN_GAUSSIAN_OPTIMIZER_H_
 
-#include "common/thread_pool.h"
-#include "train/adam_optimizer.h"
-#include "train/gaussian_model.h"
-#include "train/learning_rate_schedule.h"
+#include "encoder/src/train/adam_optimizer.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/learning_rate_schedule.h"
+#include "sdk/src/common/thread_pool.h"
 
 namespace m4d {
 

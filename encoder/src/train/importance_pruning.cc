@@ -1,9 +1,9 @@
-#include "train/importance_pruning.h"
+#include "encoder/src/train/importance_pruning.h"
 
 #include <algorithm>
 #include <numeric>
 
-#include "render/splat_renderer.h"
+#include "encoder/src/raster/splat_renderer.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "train/keyframe_rate_term.h"
+#include "encoder/src/train/keyframe_rate_term.h"
 
 #include <algorithm>
 #include <cmath>

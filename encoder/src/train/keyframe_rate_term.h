@@ -25,8 +25,8 @@
 
 #include <cstddef>
 
-#include "layers/gaussian_set_writer.h"
-#include "train/gaussian_model.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "encoder/src/train/gaussian_model.h"
 
 namespace m4d {
 

@@ -1,15 +1,15 @@
-#include "train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_stage.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
-#include "train/background_shell.h"
-#include "train/photo_consistent_points.h"
-#include "train/point_initialisation.h"
-#include "train/random_start.h"
-#include "train/random_start_schedule.h"
-#include "train/scene_extent.h"
+#include "encoder/src/train/background_shell.h"
+#include "encoder/src/train/photo_consistent_points.h"
+#include "encoder/src/train/point_initialisation.h"
+#include "encoder/src/train/random_start.h"
+#include "encoder/src/train/random_start_schedule.h"
+#include "encoder/src/train/scene_extent.h"
 
 namespace m4d {
 namespace {

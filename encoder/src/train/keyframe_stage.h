@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "train/keyframe_trainer.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

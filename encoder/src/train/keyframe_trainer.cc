@@ -1,4 +1,4 @@
-#include "train/keyframe_trainer.h"
+#include "encoder/src/train/keyframe_trainer.h"
 
 #include <algorithm>
 
@@ -7,13 +7,13 @@
 #include <string>
 #include <utility>
 
-#include "metrics/psnr.h"
-#include "render/splat_renderer.h"
-#include "train/adaptive_density_control.h"
-#include "train/gaussian_optimizer.h"
-#include "train/importance_pruning.h"
-#include "train/keyframe_rate_term.h"
-#include "train/scene_extent.h"
+#include "encoder/src/metrics/psnr.h"
+#include "encoder/src/raster/splat_renderer.h"
+#include "encoder/src/train/adaptive_density_control.h"
+#include "encoder/src/train/gaussian_optimizer.h"
+#include "encoder/src/train/importance_pruning.h"
+#include "encoder/src/train/keyframe_rate_term.h"
+#include "encoder/src/train/scene_extent.h"
 
 namespace m4d {
 namespace {

@@ -1,4 +1,4 @@
-#include "train/learning_rate_schedule.h"
+#include "encoder/src/train/learning_rate_schedule.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "train/mcmc_densification.h"
+#include "encoder/src/train/mcmc_densification.h"
 
 #include <algorithm>
 #include <cmath>

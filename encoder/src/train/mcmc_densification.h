@@ -23,7 +23,7 @@
 #include <memory>
 #include <vector>
 
-#include "train/densification_strategy.h"
+#include "encoder/src/train/densification_strategy.h"
 
 namespace m4d {
 

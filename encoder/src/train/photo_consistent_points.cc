@@ -1,14 +1,14 @@
-#include "train/photo_consistent_points.h"
+#include "encoder/src/train/photo_consistent_points.h"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
 
-#include "common/thread_pool.h"
-#include "train/scene_extent.h"
-#include "train/training_random.h"
-#include "train/view_sampling.h"
+#include "encoder/src/train/scene_extent.h"
+#include "encoder/src/train/training_random.h"
+#include "encoder/src/train/view_sampling.h"
+#include "sdk/src/common/thread_pool.h"
 
 namespace m4d {
 namespace {

@@ -1,12 +1,12 @@
-#include "train/point_initialisation.h"
+#include "encoder/src/train/point_initialisation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-#include "geometry/nearest_neighbours.h"
-#include "render/render_settings.h"
+#include "encoder/src/geometry/nearest_neighbours.h"
+#include "encoder/src/raster/render_settings.h"
 
 namespace m4d {
 namespace {

@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/status.h"
-#include "dataset/point_cloud.h"
-#include "train/gaussian_model.h"
+#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "train/prune_share_selection.h"
+#include "encoder/src/train/prune_share_selection.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <numeric>
 #include <utility>
 
-#include "train/random_start_schedule.h"
+#include "encoder/src/train/random_start_schedule.h"
 
 namespace m4d {
 

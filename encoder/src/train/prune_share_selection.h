@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "render/camera.h"
-#include "train/gaussian_model.h"
-#include "train/keyframe_stage.h"
-#include "train/keyframe_trainer.h"
-#include "train/selection_branch.h"
-#include "train/training_views.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/selection_branch.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "train/random_start.h"
+#include "encoder/src/train/random_start.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "train/training_random.h"
-#include "train/view_sampling.h"
+#include "encoder/src/train/training_random.h"
+#include "encoder/src/train/view_sampling.h"
 
 namespace m4d {
 namespace {

@@ -1,4 +1,4 @@
-#include "train/random_start_schedule.h"
+#include "encoder/src/train/random_start_schedule.h"
 
 namespace m4d {
 

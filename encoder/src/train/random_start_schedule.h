@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "train/keyframe_stage.h"
-#include "train/keyframe_trainer.h"
+#include "encoder/src/train/keyframe_stage.h"
+#include "encoder/src/train/keyframe_trainer.h"
 
 namespace m4d {
 

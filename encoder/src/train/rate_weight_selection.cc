@@ -1,4 +1,4 @@
-#include "train/rate_weight_selection.h"
+#include "encoder/src/train/rate_weight_selection.h"
 
 #include <string>
 

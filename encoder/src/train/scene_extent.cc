@@ -1,4 +1,4 @@
-#include "train/scene_extent.h"
+#include "encoder/src/train/scene_extent.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "render/camera.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

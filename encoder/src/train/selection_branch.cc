@@ -1,13 +1,13 @@
-#include "train/selection_branch.h"
+#include "encoder/src/train/selection_branch.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
 
-#include "common/byte_writer.h"
-#include "layers/gaussian_set_writer.h"
-#include "train/view_evaluation.h"
+#include "encoder/src/layers/gaussian_set_writer.h"
+#include "encoder/src/train/view_evaluation.h"
+#include "sdk/src/common/byte_writer.h"
 
 namespace m4d {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "train/keyframe_trainer.h"
-#include "train/training_views.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

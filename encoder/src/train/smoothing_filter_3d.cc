@@ -1,4 +1,4 @@
-#include "train/smoothing_filter_3d.h"
+#include "encoder/src/train/smoothing_filter_3d.h"
 
 #include <algorithm>
 #include <cmath>

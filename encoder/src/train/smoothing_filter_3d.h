@@ -13,9 +13,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "render/camera.h"
-#include "render/gaussian_layer_view.h"
-#include "train/gaussian_model.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "sdk/src/render/camera.h"
+#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

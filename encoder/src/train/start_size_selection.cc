@@ -1,4 +1,4 @@
-#include "train/start_size_selection.h"
+#include "encoder/src/train/start_size_selection.h"
 
 #include <cmath>
 #include <string>

@@ -14,12 +14,12 @@
 #include <cstddef>
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "train/keyframe_trainer.h"
-#include "train/prune_share_selection.h"
-#include "train/selection_branch.h"
-#include "train/training_views.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/train/keyframe_trainer.h"
+#include "encoder/src/train/prune_share_selection.h"
+#include "encoder/src/train/selection_branch.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

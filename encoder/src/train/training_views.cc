@@ -1,4 +1,4 @@
-#include "train/training_views.h"
+#include "encoder/src/train/training_views.h"
 
 #include <string>
 #include <utility>

@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "common/status.h"
-#include "dataset/capture.h"
-#include "image/image.h"
-#include "render/camera.h"
+#include "encoder/src/dataset/capture.h"
+#include "encoder/src/image/image.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

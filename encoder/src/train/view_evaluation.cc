@@ -1,11 +1,11 @@
-#include "train/view_evaluation.h"
+#include "encoder/src/train/view_evaluation.h"
 
 #include <algorithm>
 
-#include "metrics/colour_fitted_psnr.h"
-#include "metrics/psnr.h"
-#include "metrics/ssim.h"
-#include "render/splat_renderer.h"
+#include "encoder/src/metrics/colour_fitted_psnr.h"
+#include "encoder/src/metrics/psnr.h"
+#include "encoder/src/metrics/ssim.h"
+#include "encoder/src/raster/splat_renderer.h"
 
 namespace m4d {
 

@@ -8,11 +8,11 @@
 
 #include <vector>
 
-#include "common/status.h"
-#include "render/render_context.h"
-#include "render/render_settings.h"
-#include "train/gaussian_model.h"
-#include "train/training_views.h"
+#include "encoder/src/raster/render_context.h"
+#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 
-#include "image/image.h"
-#include "render/camera.h"
-#include "train/training_views.h"
+#include "encoder/src/image/image.h"
+#include "encoder/src/train/training_views.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "video/ffmpeg_status.h"
+#include "encoder/src/video/ffmpeg_status.h"
 
 #include <atomic>
 

@@ -1,11 +1,11 @@
-#include "video/video_reader.h"
+#include "encoder/src/video/video_reader.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
-#include "image/byte_samples.h"
-#include "video/ffmpeg_status.h"
+#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/video/ffmpeg_status.h"
 
 extern "C" {
 #include <libavcodec/avcodec.h>

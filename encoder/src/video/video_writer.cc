@@ -1,12 +1,12 @@
-#include "video/video_writer.h"
+#include "encoder/src/video/video_writer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "image/byte_samples.h"
-#include "video/ffmpeg_status.h"
+#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/video/ffmpeg_status.h"
 
 extern "C" {
 #include <libavcodec/avcodec.h>

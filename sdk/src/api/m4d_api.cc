@@ -6,10 +6,10 @@
 #include <new>
 #include <string>
 
-#include "common/spec_limits.h"
-#include "decode/decoder.h"
-#include "decode/frame_hash.h"
 #include "m4d/m4d.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/decode/decoder.h"
+#include "sdk/src/decode/frame_hash.h"
 
 struct M4dContext {
   M4dSettings settings;

@@ -5,9 +5,9 @@
 #include <new>
 #include <string>
 
-#include "gl/gl_splat_renderer.h"
 #include "m4d/m4d_render.h"
-#include "render/camera.h"
+#include "sdk/src/gl/gl_splat_renderer.h"
+#include "sdk/src/render/camera.h"
 
 struct M4dRenderer {
   M4dRendererSettings settings;

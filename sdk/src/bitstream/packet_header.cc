@@ -1,12 +1,12 @@
-#include "bitstream/packet_header.h"
+#include "sdk/src/bitstream/packet_header.h"
 
 #include <cstring>
 #include <string>
 
-#include "common/byte_reader.h"
-#include "common/byte_writer.h"
-#include "common/crc32.h"
-#include "common/spec_limits.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/byte_writer.h"
+#include "sdk/src/common/crc32.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "bitstream/sequence_header.h"
+#include "sdk/src/bitstream/sequence_header.h"
 
 #include <string>
 

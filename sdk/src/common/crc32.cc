@@ -1,8 +1,8 @@
-#include "common/crc32.h"
+#include "sdk/src/common/crc32.h"
 
 #include <array>
 
-#include "common/byte_reader.h"
+#include "sdk/src/common/byte_reader.h"
 
 namespace m4d {
 namespace {

@@ -1,8 +1,8 @@
-#include "common/md5.h"
+#include "sdk/src/common/md5.h"
 
 #include <cstring>
 
-#include "common/byte_reader.h"
+#include "sdk/src/common/byte_reader.h"
 
 namespace m4d {
 namespace {

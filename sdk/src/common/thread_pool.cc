@@ -1,4 +1,4 @@
-#include "common/thread_pool.h"
+#include "sdk/src/common/thread_pool.h"
 
 #include <algorithm>
 #include <system_error>

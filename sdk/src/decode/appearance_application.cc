@@ -1,4 +1,4 @@
-#include "decode/appearance_application.h"
+#include "sdk/src/decode/appearance_application.h"
 
 #include <cstddef>
 

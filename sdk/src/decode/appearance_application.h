@@ -4,8 +4,8 @@
 #ifndef M4D_DECODE_APPEARANCE_APPLICATION_H_
 #define M4D_DECODE_APPEARANCE_APPLICATION_H_
 
-#include "layers/appearance_update.h"
-#include "layers/gaussian_set.h"
+#include "sdk/src/layers/appearance_update.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

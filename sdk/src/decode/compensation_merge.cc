@@ -1,4 +1,4 @@
-#include "decode/compensation_merge.h"
+#include "sdk/src/decode/compensation_merge.h"
 
 #include <cstring>
 

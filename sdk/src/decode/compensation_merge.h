@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,17 +1,17 @@
-#include "decode/decoder.h"
+#include "sdk/src/decode/decoder.h"
 
 #include <string>
 #include <utility>
 
-#include "common/byte_reader.h"
-#include "common/crc32.h"
-#include "common/spec_limits.h"
-#include "decode/appearance_application.h"
-#include "decode/compensation_merge.h"
-#include "decode/motion_application.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/appearance_update.h"
-#include "layers/gaussian_set_reader.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/crc32.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/decode/appearance_application.h"
+#include "sdk/src/decode/compensation_merge.h"
+#include "sdk/src/decode/motion_application.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/appearance_update.h"
+#include "sdk/src/layers/gaussian_set_reader.h"
 
 namespace m4d {
 namespace {

@@ -9,13 +9,13 @@
 #include <memory>
 #include <string>
 
-#include "bitstream/packet_header.h"
-#include "bitstream/sequence_header.h"
-#include "common/status.h"
-#include "common/thread_pool.h"
-#include "layers/gaussian_set.h"
-#include "layers/mlp_weights.h"
-#include "layers/motion_grid.h"
+#include "sdk/src/bitstream/packet_header.h"
+#include "sdk/src/bitstream/sequence_header.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/common/thread_pool.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/mlp_weights.h"
+#include "sdk/src/layers/motion_grid.h"
 
 namespace m4d {
 

@@ -1,8 +1,8 @@
-#include "decode/frame_hash.h"
+#include "sdk/src/decode/frame_hash.h"
 
 #include <cstring>
 
-#include "common/md5.h"
+#include "sdk/src/common/md5.h"
 
 namespace m4d {
 namespace {

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
-#include "decode/decoder.h"
-#include "layers/gaussian_set.h"
 #include "m4d/m4d.h"
+#include "sdk/src/decode/decoder.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,6 +1,6 @@
-#include "decode/motion_application.h"
+#include "sdk/src/decode/motion_application.h"
 
-#include "decode/motion_kernel.h"
+#include "sdk/src/decode/motion_kernel.h"
 
 namespace m4d {
 

@@ -4,11 +4,11 @@
 #ifndef M4D_DECODE_MOTION_APPLICATION_H_
 #define M4D_DECODE_MOTION_APPLICATION_H_
 
-#include "common/thread_pool.h"
-#include "layers/gaussian_set.h"
-#include "layers/mlp_weights.h"
-#include "layers/motion_config.h"
-#include "layers/motion_grid.h"
+#include "sdk/src/common/thread_pool.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/mlp_weights.h"
+#include "sdk/src/layers/motion_config.h"
+#include "sdk/src/layers/motion_grid.h"
 
 namespace m4d {
 

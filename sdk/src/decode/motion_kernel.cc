@@ -2,7 +2,7 @@
 // baseline target and, on x86-64, once more with AVX-512 (M4D_MOTION_KERNEL_NAME names each
 // build's entry point); motion_application.cc picks one at run time. Both perform the same
 // IEEE operations lane by lane, so their results are bit-identical.
-#include "decode/motion_kernel.h"
+#include "sdk/src/decode/motion_kernel.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 #if defined(__wasm_simd128__)
 #include <wasm_simd128.h>

@@ -3,10 +3,10 @@
 #ifndef M4D_DECODE_MOTION_KERNEL_H_
 #define M4D_DECODE_MOTION_KERNEL_H_
 
-#include "layers/gaussian_set.h"
-#include "layers/mlp_weights.h"
-#include "layers/motion_config.h"
-#include "layers/motion_grid.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/mlp_weights.h"
+#include "sdk/src/layers/motion_config.h"
+#include "sdk/src/layers/motion_grid.h"
 
 #ifndef M4D_MOTION_KERNEL_NAME
 #define M4D_MOTION_KERNEL_NAME ApplyMotionBaseline

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 

@@ -1,10 +1,10 @@
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 #include <cstddef>
 #include <string>
 #include <vector>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

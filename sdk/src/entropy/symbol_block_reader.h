@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "common/byte_reader.h"
-#include "common/spec_limits.h"
-#include "common/status.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "gl/egl_context.h"
+#include "sdk/src/gl/egl_context.h"
 
 // Headless: keep the X11 headers out of eglplatform.h.
 #define EGL_NO_X11 1

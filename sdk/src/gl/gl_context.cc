@@ -1,7 +1,7 @@
-#include "gl/gl_context.h"
+#include "sdk/src/gl/gl_context.h"
 
-#include "gl/egl_context.h"
-#include "gl/osmesa_context.h"
+#include "sdk/src/gl/egl_context.h"
+#include "sdk/src/gl/osmesa_context.h"
 
 namespace m4d {
 

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "common/status.h"
-#include "gl/gl_functions.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/gl/gl_functions.h"
 
 namespace m4d {
 

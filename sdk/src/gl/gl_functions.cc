@@ -1,4 +1,4 @@
-#include "gl/gl_functions.h"
+#include "sdk/src/gl/gl_functions.h"
 
 namespace m4d {
 

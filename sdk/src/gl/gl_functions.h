@@ -12,7 +12,7 @@
 #endif
 #include <GLES3/gl3.h>
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "gl/gl_splat_renderer.h"
+#include "sdk/src/gl/gl_splat_renderer.h"
 
 #define EGL_NO_X11 1
 #include <EGL/egl.h>

@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "common/status.h"
-#include "gl/gl_context.h"
-#include "gl/gl_functions.h"
-#include "gl/offscreen_framebuffer.h"
-#include "gl/splat_draw_program.h"
-#include "gl/splat_instances.h"
-#include "layers/gaussian_set.h"
-#include "render/camera.h"
-#include "render/gaussian_layer_view.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/gl/gl_context.h"
+#include "sdk/src/gl/gl_functions.h"
+#include "sdk/src/gl/offscreen_framebuffer.h"
+#include "sdk/src/gl/splat_draw_program.h"
+#include "sdk/src/gl/splat_instances.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/render/camera.h"
+#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "gl/offscreen_framebuffer.h"
+#include "sdk/src/gl/offscreen_framebuffer.h"
 
 #include <algorithm>
 #include <string>

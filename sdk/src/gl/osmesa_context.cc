@@ -1,4 +1,4 @@
-#include "gl/osmesa_context.h"
+#include "sdk/src/gl/osmesa_context.h"
 
 #include <dlfcn.h>
 

@@ -1,4 +1,4 @@
-#include "gl/shader_program.h"
+#include "sdk/src/gl/shader_program.h"
 
 #include <algorithm>
 #include <string>

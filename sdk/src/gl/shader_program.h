@@ -3,8 +3,8 @@
 #ifndef M4D_GL_SHADER_PROGRAM_H_
 #define M4D_GL_SHADER_PROGRAM_H_
 
-#include "common/status.h"
-#include "gl/gl_functions.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/gl/gl_functions.h"
 
 namespace m4d {
 

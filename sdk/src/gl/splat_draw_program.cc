@@ -1,8 +1,8 @@
-#include "gl/splat_draw_program.h"
+#include "sdk/src/gl/splat_draw_program.h"
 
 #include <string>
 
-#include "gl/shader_program.h"
+#include "sdk/src/gl/shader_program.h"
 
 namespace m4d {
 namespace {

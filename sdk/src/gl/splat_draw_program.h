@@ -14,9 +14,9 @@
 #include <cstddef>
 #include <memory>
 
-#include "common/status.h"
-#include "gl/gl_functions.h"
-#include "gl/splat_instances.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/gl/gl_functions.h"
+#include "sdk/src/gl/splat_instances.h"
 
 namespace m4d {
 

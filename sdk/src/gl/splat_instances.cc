@@ -1,13 +1,13 @@
-#include "gl/splat_instances.h"
+#include "sdk/src/gl/splat_instances.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 
-#include "render/projection_constants.h"
-#include "render/radix_sort.h"
-#include "render/splat_projection.h"
+#include "sdk/src/render/projection_constants.h"
+#include "sdk/src/render/radix_sort.h"
+#include "sdk/src/render/splat_projection.h"
 
 namespace m4d {
 namespace {

@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/status.h"
-#include "common/thread_pool.h"
-#include "render/camera.h"
-#include "render/gaussian_layer_view.h"
-#include "render/projected_splats.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/common/thread_pool.h"
+#include "sdk/src/render/camera.h"
+#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/render/projected_splats.h"
 
 namespace m4d {
 

@@ -1,5 +1,5 @@
 // adaptive_attributes() (bitstream-spec 5.7).
-#include "layers/adaptive_attributes.h"
+#include "sdk/src/layers/adaptive_attributes.h"
 
 #include <string>
 

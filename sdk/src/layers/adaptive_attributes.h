@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "common/spec_limits.h"
-#include "common/status.h"
-#include "entropy/binary_range_decoder.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/binary_range_decoder.h"
 
 namespace m4d {
 

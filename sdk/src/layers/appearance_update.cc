@@ -1,6 +1,6 @@
-#include "layers/appearance_update.h"
+#include "sdk/src/layers/appearance_update.h"
 
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 

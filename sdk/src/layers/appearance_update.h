@@ -7,10 +7,10 @@
 
 #include <cstdint>
 
-#include "common/byte_reader.h"
-#include "common/hooked_allocator.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/hooked_allocator.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 

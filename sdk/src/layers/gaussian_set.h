@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/hooked_allocator.h"
+#include "sdk/src/common/hooked_allocator.h"
 
 namespace m4d {
 

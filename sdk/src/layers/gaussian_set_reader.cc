@@ -4,7 +4,7 @@
 // declares (points, components, symbol tables). So the Draco stream's structure is walked
 // first (CheckDracoStream) and only a stream whose every such count is bounded by the set's
 // count and groups reaches draco::Decoder.
-#include "layers/gaussian_set_reader.h"
+#include "sdk/src/layers/gaussian_set_reader.h"
 
 #include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/adaptive_attributes.h"
-#include "layers/octree_positions.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/adaptive_attributes.h"
+#include "sdk/src/layers/octree_positions.h"
 
 namespace m4d {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <cstdint>
 
-#include "common/byte_reader.h"
-#include "common/status.h"
-#include "layers/gaussian_set.h"
-#include "layers/gaussian_set_syntax.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_set_syntax.h"
 
 namespace m4d {
 

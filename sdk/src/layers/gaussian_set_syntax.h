@@ -3,8 +3,8 @@
 #ifndef M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
 #define M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
 
-#include "entropy/symbol_block_reader.h"
-#include "layers/rotation_coding.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/rotation_coding.h"
 
 namespace m4d {
 

@@ -1,12 +1,12 @@
-#include "layers/mlp_weights.h"
+#include "sdk/src/layers/mlp_weights.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 namespace {

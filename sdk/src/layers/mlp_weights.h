@@ -4,10 +4,10 @@
 
 #include <vector>
 
-#include "common/byte_reader.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/motion_config.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

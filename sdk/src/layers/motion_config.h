@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 

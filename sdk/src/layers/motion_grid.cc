@@ -1,12 +1,12 @@
-#include "layers/motion_grid.h"
+#include "sdk/src/layers/motion_grid.h"
 
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <string>
 
-#include "common/spec_limits.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/spec_limits.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 namespace {

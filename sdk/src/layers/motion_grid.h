@@ -5,11 +5,11 @@
 
 #include <cstdint>
 
-#include "common/byte_reader.h"
-#include "common/hooked_allocator.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
-#include "layers/motion_config.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/hooked_allocator.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/motion_config.h"
 
 namespace m4d {
 

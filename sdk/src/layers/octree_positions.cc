@@ -1,9 +1,9 @@
-#include "layers/octree_positions.h"
+#include "sdk/src/layers/octree_positions.h"
 
 #include <string>
 #include <vector>
 
-#include "common/spec_limits.h"
+#include "sdk/src/common/spec_limits.h"
 
 namespace m4d {
 namespace {

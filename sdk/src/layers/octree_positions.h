@@ -9,9 +9,9 @@
 
 #include <cstdint>
 
-#include "common/byte_reader.h"
-#include "common/status.h"
-#include "entropy/symbol_block_reader.h"
+#include "sdk/src/common/byte_reader.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/entropy/symbol_block_reader.h"
 
 namespace m4d {
 

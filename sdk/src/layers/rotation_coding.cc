@@ -1,4 +1,4 @@
-#include "layers/rotation_coding.h"
+#include "sdk/src/layers/rotation_coding.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "sdk/src/render/camera.h"
 
 #include <cmath>
 

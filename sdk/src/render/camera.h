@@ -8,7 +8,7 @@
 #ifndef M4D_RENDER_CAMERA_H_
 #define M4D_RENDER_CAMERA_H_
 
-#include "common/status.h"
+#include "sdk/src/common/status.h"
 
 namespace m4d {
 

@@ -7,8 +7,8 @@
 
 #include <cstddef>
 
-#include "layers/gaussian_set.h"
 #include "m4d/m4d.h"
+#include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 

@@ -1,4 +1,4 @@
-#include "render/projection_constants.h"
+#include "sdk/src/render/projection_constants.h"
 
 #include <algorithm>
 

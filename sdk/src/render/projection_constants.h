@@ -9,7 +9,7 @@
 #ifndef M4D_RENDER_PROJECTION_CONSTANTS_H_
 #define M4D_RENDER_PROJECTION_CONSTANTS_H_
 
-#include "render/camera.h"
+#include "sdk/src/render/camera.h"
 
 namespace m4d {
 

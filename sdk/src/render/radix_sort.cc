@@ -1,4 +1,4 @@
-#include "render/radix_sort.h"
+#include "sdk/src/render/radix_sort.h"
 
 #include <cstddef>
 

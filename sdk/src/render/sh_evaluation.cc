@@ -1,4 +1,4 @@
-#include "render/sh_evaluation.h"
+#include "sdk/src/render/sh_evaluation.h"
 
 namespace m4d {
 

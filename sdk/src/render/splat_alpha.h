@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "render/lanes.h"
+#include "sdk/src/render/lanes.h"
 
 namespace m4d {
 

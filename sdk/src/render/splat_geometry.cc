@@ -1,4 +1,4 @@
-#include "render/splat_geometry.h"
+#include "sdk/src/render/splat_geometry.h"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 #ifndef M4D_RENDER_SPLAT_GEOMETRY_H_
 #define M4D_RENDER_SPLAT_GEOMETRY_H_
 
-#include "render/projection_constants.h"
+#include "sdk/src/render/projection_constants.h"
 
 namespace m4d {
 

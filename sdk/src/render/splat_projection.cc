@@ -1,13 +1,13 @@
-#include "render/splat_projection.h"
+#include "sdk/src/render/splat_projection.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "layers/gaussian_set.h"
-#include "render/sh_evaluation.h"
-#include "render/splat_alpha.h"
-#include "render/splat_geometry.h"
+#include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/render/sh_evaluation.h"
+#include "sdk/src/render/splat_alpha.h"
+#include "sdk/src/render/splat_geometry.h"
 
 namespace m4d {
 namespace {

@@ -18,9 +18,9 @@
 
 #include <cstddef>
 
-#include "render/gaussian_layer_view.h"
-#include "render/projected_splats.h"
-#include "render/projection_constants.h"
+#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/render/projected_splats.h"
+#include "sdk/src/render/projection_constants.h"
 
 namespace m4d {
 

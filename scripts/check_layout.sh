@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Checks the library boundaries of docs/architecture.md on the includes: every include is
+# rooted at the repository (it names the tree that holds it), the SDK includes nothing of
+# the encoder, the rasterizer nothing of the encoder but itself, and the encoder's pipeline
+# nothing of the synthetic content, the tools or the tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+failed=0
+# forbid MESSAGE PATTERN DIR...: fails with MESSAGE when a quoted include under the DIRs
+# matches the extended regular expression PATTERN (applied to what follows the quote).
+forbid() {
+  local message=$1 pattern=$2 hits
+  shift 2
+  hits=$(grep -rnE --include='*.c' --include='*.cc' --include='*.h' "^#include \"$pattern" "$@" ||
+         true)
+  if [ -n "$hits" ]; then
+    printf 'layout: %s:\n%s\n' "$message" "$hits" >&2
+    failed=1
+  fi
+}
+# Every quoted include names its tree, or is a public header of the SDK.
+unrooted=$(grep -rnE --include='*.c' --include='*.cc' --include='*.h' '^#include "' \
+             sdk encoder tools tests bench examples |
+           grep -vE ':#include "((sdk/src|encoder/src|tools|tests)/|m4d/m4d(_render)?\.h")' || true)
+if [ -n "$unrooted" ]; then
+  printf 'layout: an include not rooted at the repository:\n%s\n' "$unrooted" >&2
+  failed=1
+fi
+forbid "the SDK includes the encoder, the tools or the tests" '(encoder|tools|tests)/' sdk
+forbid "the rasterizer includes the encoder beyond itself" 'encoder/src/([^r]|r[^a])' \
+  encoder/src/raster
+mapfile -t pipeline < <(ls -d encoder/src/* | grep -v '/synthetic$')
+forbid "the encoder includes the synthetic content, the tools or the tests" \
+  '(encoder/src/synthetic/|tools/|tests/)' "${pipeline[@]}"
+if [ "$failed" = 0 ]; then
+  echo "layout: the library boundaries hold"
+fi
+exit "$failed"
