@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "encoder/src/dataset/capture_loader.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/stream/stream_writer.h"
 #include "encoder/src/synthetic/synthetic_content.h"
 #include "m4d/m4d.h"

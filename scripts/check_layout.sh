@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Checks the library boundaries of docs/architecture.md on the includes: every include is
 # rooted at the repository (it names the tree that holds it), the SDK includes nothing of
-# the encoder, the rasterizer nothing of the encoder but itself, and the encoder's pipeline
-# nothing of the synthetic content, the tools or the tests.
+# the encoder, the rasterizer nothing of the encoder but itself, the encoder's pipeline nothing
+# of the capture input, and neither of them anything of the synthetic content, the tools or
+# the tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -30,9 +31,11 @@ fi
 forbid "the SDK includes the encoder, the tools or the tests" '(encoder|tools|tests)/' sdk
 forbid "the rasterizer includes the encoder beyond itself" 'encoder/src/([^r]|r[^a])' \
   encoder/src/raster
-mapfile -t pipeline < <(ls -d encoder/src/* | grep -v '/synthetic$')
-forbid "the encoder includes the synthetic content, the tools or the tests" \
-  '(encoder/src/synthetic/|tools/|tests/)' "${pipeline[@]}"
+mapfile -t pipeline < <(ls -d encoder/src/* | grep -vE '/(synthetic|dataset|video|ply|image_io)$')
+forbid "the pipeline includes the capture input, the synthetic content, the tools or the tests" \
+  '(encoder/src/(synthetic|dataset|video|ply|image_io)/|tools/|tests/)' "${pipeline[@]}"
+forbid "the capture input includes the synthetic content, the tools or the tests" \
+  '(encoder/src/synthetic/|tools/|tests/)' encoder/src/{dataset,video,ply,image_io}
 if [ "$failed" = 0 ]; then
   echo "layout: the library boundaries hold"
 fi

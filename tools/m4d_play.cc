@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "encoder/src/dataset/capture_loader.h"
-#include "encoder/src/image/file_bytes.h"
 #include "encoder/src/image/image.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/png_io.h"
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/video/video_writer.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "tests/encoder/image_test_util.h"
 
 namespace m4d {

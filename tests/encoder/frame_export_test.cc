@@ -10,7 +10,7 @@
 
 #include "encoder/src/export/frame_gaussians.h"
 #include "encoder/src/export/gltf_splat_writer.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "m4d/m4d.h"
 

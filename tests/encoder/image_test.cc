@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "encoder/src/image/area_resize.h"
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/file_bytes.h"
 #include "encoder/src/image/image.h"
-#include "encoder/src/image/image_file.h"
-#include "encoder/src/image/jpeg_io.h"
-#include "encoder/src/image/png_io.h"
 #include "encoder/src/image/rgb_conversion.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/image_file.h"
+#include "encoder/src/image_io/jpeg_io.h"
+#include "encoder/src/image_io/png_io.h"
 #include "tests/encoder/image_test_util.h"
 
 namespace m4d {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace testing {

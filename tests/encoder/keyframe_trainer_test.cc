@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/metrics/photometric_loss.h"
 #include "encoder/src/raster/splat_renderer.h"

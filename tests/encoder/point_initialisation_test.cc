@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/point_initialisation.h"
 #include "encoder/src/train/scene_extent.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
 #include "encoder/src/raster/splat_renderer.h"
 #include "encoder/src/train/keyframe_stage.h"

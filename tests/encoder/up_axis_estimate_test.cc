@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "encoder/src/dataset/up_axis_estimate.h"
+#include "encoder/src/capture/up_axis_estimate.h"
 #include "m4d/m4d.h"
 
 namespace m4d {

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "encoder/src/image/jpeg_io.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/jpeg_io.h"
+#include "encoder/src/image_io/png_io.h"
 
 namespace {
 

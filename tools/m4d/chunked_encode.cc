@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/io/atomic_file.h"
 #include "tools/m4d/mpi_ranks.h"
 #include "tools/m4d/sequence_report_output.h"

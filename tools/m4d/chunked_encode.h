@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/pipeline/encoder_options.h"
 #include "encoder/src/pipeline/frame_report.h"
 #include "encoder/src/pipeline/sequence_encoder.h"

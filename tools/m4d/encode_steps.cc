@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "encoder/src/dataset/up_axis_estimate.h"
+#include "encoder/src/capture/up_axis_estimate.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "tools/m4d/mpi_ranks.h"

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/pipeline/encoder_options.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
 #include "encoder/src/train/gaussian_model.h"

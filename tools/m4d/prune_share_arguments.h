@@ -9,7 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/prune_share_selection.h"
 #include "encoder/src/train/start_size_selection.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/png_io.h"
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/pipeline/rate_points.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/png_io.h"
 
 namespace m4d {
 

@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/dataset/capture_options.h"
 #include "sdk/src/common/status.h"
 

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "encoder/src/dataset/camera_downscale.h"
+#include "encoder/src/capture/camera_downscale.h"
 #include "encoder/src/dataset/initial_points.h"
 #include "encoder/src/dataset/world_handedness.h"
 #include "encoder/src/image/area_resize.h"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/image_io/byte_samples.h"
 #include "encoder/src/io/little_endian_reader.h"
 
 namespace m4d {

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/dataset/capture_options.h"
 #include "encoder/src/dataset/colmap_model.h"
 #include "sdk/src/common/status.h"

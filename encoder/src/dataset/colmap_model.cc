@@ -5,7 +5,7 @@
 
 #include "encoder/src/dataset/colmap_binary.h"
 #include "encoder/src/dataset/colmap_text.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace {

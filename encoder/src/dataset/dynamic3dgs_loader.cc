@@ -9,7 +9,7 @@
 #include "encoder/src/dataset/image_file_source.h"
 #include "encoder/src/dataset/json_object.h"
 #include "encoder/src/dataset/npz_archive.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace {

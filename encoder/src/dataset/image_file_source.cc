@@ -1,7 +1,7 @@
 #include "encoder/src/dataset/image_file_source.h"
 
-#include "encoder/src/image/image_file.h"
 #include "encoder/src/image/rgb_conversion.h"
+#include "encoder/src/image_io/image_file.h"
 
 namespace m4d {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "sdk/src/common/status.h"
 
 namespace m4d {

@@ -8,7 +8,7 @@
 #include "encoder/src/dataset/image_file_source.h"
 #include "encoder/src/dataset/npy_array.h"
 #include "encoder/src/dataset/video_frame_source.h"
-#include "encoder/src/image/image_file.h"
+#include "encoder/src/image_io/image_file.h"
 
 namespace m4d {
 namespace {

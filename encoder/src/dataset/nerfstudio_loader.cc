@@ -11,7 +11,7 @@
 #include "encoder/src/dataset/image_file_source.h"
 #include "encoder/src/dataset/json_object.h"
 #include "encoder/src/dataset/undistorting_frame_source.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/ply/point_cloud_ply.h"
 
 namespace m4d {

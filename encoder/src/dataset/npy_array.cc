@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/io/little_endian_reader.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "npy export assumes a little-endian host");

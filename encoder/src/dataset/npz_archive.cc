@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "encoder/src/dataset/zip_archive.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace {

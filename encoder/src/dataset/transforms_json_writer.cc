@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/io/shortest_decimal.h"
 
 namespace m4d {

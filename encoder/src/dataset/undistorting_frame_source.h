@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/dataset/lens_distortion.h"
 #include "encoder/src/dataset/undistortion.h"
 #include "sdk/src/common/status.h"

@@ -8,7 +8,7 @@
 #ifndef M4D_ENCODER_DATASET_WORLD_HANDEDNESS_H_
 #define M4D_ENCODER_DATASET_WORLD_HANDEDNESS_H_
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "sdk/src/common/status.h"
 
 namespace m4d {

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <limits>
 
+#include "encoder/src/capture/up_axis_estimate.h"
 #include "encoder/src/compensation/compensation_candidates.h"
 #include "encoder/src/compensation/compensation_training.h"
-#include "encoder/src/dataset/up_axis_estimate.h"
 #include "encoder/src/decoupling/lookahead_decoupling.h"
 #include "encoder/src/decoupling/temporal_change.h"
 #include "encoder/src/layers/gaussian_set_writer.h"

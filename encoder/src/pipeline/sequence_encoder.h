@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/image/image.h"
 #include "encoder/src/motion/motion_estimation.h"
 #include "encoder/src/pipeline/encoder_options.h"

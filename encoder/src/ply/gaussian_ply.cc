@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/ply/ply_header.h"
 #include "encoder/src/ply/ply_reader.h"
 

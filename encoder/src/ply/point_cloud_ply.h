@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "sdk/src/common/status.h"
 
 namespace m4d {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/image_io/byte_samples.h"
 #include "encoder/src/metrics/parallel_rows.h"
 
 namespace m4d {

@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "encoder/src/dataset/transforms_json_writer.h"
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/file_bytes.h"
-#include "encoder/src/image/jpeg_io.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/jpeg_io.h"
+#include "encoder/src/image_io/png_io.h"
 #include "encoder/src/io/shortest_decimal.h"
 #include "encoder/src/ply/point_cloud_ply.h"
 #include "encoder/src/synthetic/lens_resampling.h"

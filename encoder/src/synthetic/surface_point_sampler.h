@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/synthetic/scene_animation.h"
 #include "encoder/src/synthetic/scene_content.h"
 

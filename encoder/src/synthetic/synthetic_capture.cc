@@ -6,8 +6,8 @@
 
 #include "encoder/src/dataset/undistorting_frame_source.h"
 #include "encoder/src/dataset/world_handedness.h"
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/jpeg_io.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/jpeg_io.h"
 #include "encoder/src/synthetic/lens_resampling.h"
 #include "encoder/src/synthetic/synthetic_scene.h"
 

@@ -8,7 +8,7 @@
 
 #include <cstddef>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/synthetic/scene_writer.h"
 #include "encoder/src/synthetic/synthetic_scene_options.h"
 #include "sdk/src/common/status.h"

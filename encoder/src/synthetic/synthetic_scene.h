@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/synthetic/lens_resampling.h"
 #include "encoder/src/synthetic/scene_content.h"
 #include "encoder/src/synthetic/scene_renderer.h"

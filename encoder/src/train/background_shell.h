@@ -11,7 +11,7 @@
 
 #include <cstddef>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "encoder/src/dataset/camera_downscale.h"
+#include "encoder/src/capture/camera_downscale.h"
 #include "encoder/src/image/area_resize.h"
 
 namespace m4d {

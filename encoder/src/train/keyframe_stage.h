@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "sdk/src/common/status.h"
 

@@ -30,7 +30,7 @@
 #include <utility>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/image/image.h"
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/metrics/photometric_loss.h"

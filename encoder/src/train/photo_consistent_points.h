@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
 

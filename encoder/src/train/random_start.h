@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
 

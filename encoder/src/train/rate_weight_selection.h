@@ -13,7 +13,7 @@
 
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/prune_share_selection.h"

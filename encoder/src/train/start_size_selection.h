@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/prune_share_selection.h"
 #include "encoder/src/train/selection_branch.h"

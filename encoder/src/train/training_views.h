@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "encoder/src/image/image.h"
 #include "sdk/src/common/status.h"
 #include "sdk/src/render/camera.h"

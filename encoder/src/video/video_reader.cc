@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "encoder/src/image/byte_samples.h"
+#include "encoder/src/image_io/byte_samples.h"
 #include "encoder/src/video/ffmpeg_status.h"
 
 extern "C" {

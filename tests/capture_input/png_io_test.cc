@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/png_io.h"
 #include "sdk/src/common/crc32.h"
 #include "tests/encoder/image_test_util.h"
 

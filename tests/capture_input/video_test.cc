@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/metrics/psnr.h"
 #include "encoder/src/video/video_reader.h"
 #include "encoder/src/video/video_writer.h"
-#include "tests/encoder/dataset_test_util.h"
+#include "tests/capture_input/dataset_test_util.h"
 
 namespace m4d {
 namespace {

@@ -1,12 +1,12 @@
-#include "encoder/src/image/image_file.h"
+#include "encoder/src/image_io/image_file.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <initializer_list>
 
-#include "encoder/src/image/file_bytes.h"
-#include "encoder/src/image/jpeg_io.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/jpeg_io.h"
+#include "encoder/src/image_io/png_io.h"
 
 namespace m4d {
 namespace {

@@ -22,13 +22,13 @@
 #include "encoder/src/dataset/lens_distortion.h"
 #include "encoder/src/dataset/npy_array.h"
 #include "encoder/src/image/area_resize.h"
-#include "encoder/src/image/file_bytes.h"
-#include "encoder/src/image/jpeg_io.h"
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/jpeg_io.h"
+#include "encoder/src/image_io/png_io.h"
 #include "encoder/src/metrics/psnr.h"
 #include "encoder/src/ply/point_cloud_ply.h"
 #include "encoder/src/video/video_writer.h"
-#include "tests/encoder/dataset_test_util.h"
+#include "tests/capture_input/dataset_test_util.h"
 
 namespace m4d {
 namespace {

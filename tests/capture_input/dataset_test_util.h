@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/byte_samples.h"
 #include "encoder/src/image/image.h"
+#include "encoder/src/image_io/byte_samples.h"
 #include "sdk/src/render/camera.h"
 
 namespace m4d {

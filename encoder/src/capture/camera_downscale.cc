@@ -1,4 +1,4 @@
-#include "encoder/src/dataset/camera_downscale.h"
+#include "encoder/src/capture/camera_downscale.h"
 
 #include <string>
 

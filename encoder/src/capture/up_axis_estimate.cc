@@ -1,4 +1,4 @@
-#include "encoder/src/dataset/up_axis_estimate.h"
+#include "encoder/src/capture/up_axis_estimate.h"
 
 #include <cmath>
 

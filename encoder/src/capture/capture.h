@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/point_cloud.h"
+#include "encoder/src/capture/point_cloud.h"
 #include "encoder/src/image/image.h"
 #include "sdk/src/common/status.h"
 #include "sdk/src/render/camera.h"

@@ -1,4 +1,4 @@
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 
 #include <algorithm>
 

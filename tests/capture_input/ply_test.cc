@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/ply/ply_header.h"
 #include "encoder/src/ply/point_cloud_ply.h"

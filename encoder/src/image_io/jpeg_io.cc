@@ -1,4 +1,4 @@
-#include "encoder/src/image/jpeg_io.h"
+#include "encoder/src/image_io/jpeg_io.h"
 
 #include <csetjmp>
 #include <cstdio>  // jpeglib.h needs FILE
@@ -6,8 +6,8 @@
 
 #include <jpeglib.h>
 
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace {

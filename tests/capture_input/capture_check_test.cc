@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "encoder/src/dataset/image_file_source.h"
-#include "encoder/src/image/file_bytes.h"
-#include "encoder/src/image/png_io.h"
-#include "tests/encoder/dataset_test_util.h"
+#include "encoder/src/image_io/file_bytes.h"
+#include "encoder/src/image_io/png_io.h"
+#include "tests/capture_input/dataset_test_util.h"
 
 namespace m4d {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "encoder/src/dataset/npy_array.h"
 #include "encoder/src/dataset/npz_archive.h"
-#include "tests/encoder/dataset_test_util.h"
+#include "tests/capture_input/dataset_test_util.h"
 
 namespace m4d {
 namespace {

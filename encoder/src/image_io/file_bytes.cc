@@ -1,4 +1,4 @@
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "encoder/src/dataset/zip_archive.h"
-#include "tests/encoder/dataset_test_util.h"
+#include "tests/capture_input/dataset_test_util.h"
 
 namespace m4d {
 namespace {

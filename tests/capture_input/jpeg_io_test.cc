@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/image/jpeg_io.h"
+#include "encoder/src/image_io/jpeg_io.h"
 #include "encoder/src/metrics/psnr.h"
 #include "tests/encoder/image_test_util.h"
 

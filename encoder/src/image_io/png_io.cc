@@ -1,4 +1,4 @@
-#include "encoder/src/image/png_io.h"
+#include "encoder/src/image_io/png_io.h"
 
 #include <png.h>
 
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "encoder/src/image/byte_samples.h"
-#include "encoder/src/image/file_bytes.h"
+#include "encoder/src/image_io/byte_samples.h"
+#include "encoder/src/image_io/file_bytes.h"
 
 namespace m4d {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/src/dataset/capture.h"
+#include "encoder/src/capture/capture.h"
 #include "sdk/src/common/status.h"
 
 namespace m4d {
