@@ -8,19 +8,19 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "encoder/src/distributed/chunked_encode.h"
+#include "encoder/src/distributed/mpi_ranks.h"
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "encoder/src/video/video_writer.h"
-#include "tools/m4d/chunked_encode.h"
 #include "tools/m4d/command_status.h"
 #include "tools/m4d/encode_steps.h"
-#include "tools/m4d/mpi_ranks.h"
 #include "tools/m4d/peak_memory.h"
 #include "tools/m4d/rate_point_name.h"
 #include "tools/m4d/rendition_encode.h"
-#include "tools/m4d/sequence_report_output.h"
 #include "tools/m4d/strategy_arguments.h"
 #include "tools/m4d/stream_check.h"
 #include "tools/m4d/view_strip.h"

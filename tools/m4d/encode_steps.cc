@@ -4,10 +4,10 @@
 #include <cstdio>
 
 #include "encoder/src/capture/up_axis_estimate.h"
+#include "encoder/src/distributed/mpi_ranks.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/stream/frame_rate.h"
-#include "tools/m4d/mpi_ranks.h"
-#include "tools/m4d/sequence_report_output.h"
 
 namespace m4d {
 

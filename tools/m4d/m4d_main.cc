@@ -6,11 +6,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "encoder/src/distributed/mpi_ranks.h"
 #include "m4d/m4d.h"
 #include "tools/m4d/ablate_command.h"
 #include "tools/m4d/bench_command.h"
 #include "tools/m4d/encode_command.h"
-#include "tools/m4d/mpi_ranks.h"
 #include "tools/m4d/rd_command.h"
 #include "tools/m4d/scene_command.h"
 #include "tools/m4d/train_command.h"

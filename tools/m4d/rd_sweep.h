@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "encoder/src/metrics/bjontegaard.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 #include "sdk/src/common/status.h"
 #include "tools/m4d/encode_command.h"
-#include "tools/m4d/sequence_report_output.h"
 
 namespace m4d {
 

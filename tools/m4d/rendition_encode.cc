@@ -8,16 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "encoder/src/distributed/mpi_ranks.h"
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "encoder/src/train/keyframe_stage.h"
 #include "tools/m4d/encode_steps.h"
-#include "tools/m4d/mpi_ranks.h"
 #include "tools/m4d/peak_memory.h"
 #include "tools/m4d/rendition_manifest.h"
-#include "tools/m4d/sequence_report_output.h"
 #include "tools/m4d/stream_check.h"
 
 namespace m4d {

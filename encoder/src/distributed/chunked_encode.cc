@@ -1,14 +1,14 @@
-#include "tools/m4d/chunked_encode.h"
+#include "encoder/src/distributed/chunked_encode.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
+#include "encoder/src/distributed/mpi_ranks.h"
 #include "encoder/src/image_io/file_bytes.h"
 #include "encoder/src/io/atomic_file.h"
-#include "tools/m4d/mpi_ranks.h"
-#include "tools/m4d/sequence_report_output.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 
 namespace m4d {
 namespace {

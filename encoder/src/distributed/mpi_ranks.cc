@@ -1,4 +1,4 @@
-#include "tools/m4d/mpi_ranks.h"
+#include "encoder/src/distributed/mpi_ranks.h"
 
 #include <cstdlib>
 

@@ -1,4 +1,4 @@
-#include "tools/m4d/sequence_report_output.h"
+#include "encoder/src/pipeline/sequence_report_output.h"
 
 #include <filesystem>
 #include <fstream>
