@@ -31,12 +31,12 @@ fi
 forbid "the SDK includes the encoder, the tools or the tests" '(encoder|tools|tests)/' sdk
 forbid "the rasterizer includes the encoder beyond itself" 'encoder/src/([^r]|r[^a])' \
   encoder/src/raster
-above='(synthetic|distributed|dataset|video|ply|image_io)'
+above='(run|synthetic|distributed|dataset|video|ply|image_io)'
 mapfile -t pipeline < <(ls -d encoder/src/* | grep -vE "/$above\$")
 forbid "the pipeline includes a library above it, the tools or the tests" \
   "(encoder/src/$above/|tools/|tests/)" "${pipeline[@]}"
 forbid "the capture input includes the synthetic content, the tools or the tests" \
-  '(encoder/src/synthetic/|tools/|tests/)' encoder/src/{dataset,video,ply,image_io}
+  '(encoder/src/(run|synthetic)/|tools/|tests/)' encoder/src/{dataset,video,ply,image_io}
 if [ "$failed" = 0 ]; then
   echo "layout: the library boundaries hold"
 fi

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "encoder/src/io/atomic_file.h"
+#include "encoder/src/stream/gop_index.h"
 #include "m4d/m4d.h"
 #include "tools/existing_output.h"
-#include "tools/gop_index.h"
 #include "tools/usage_exit.h"
 
 namespace {

@@ -1,4 +1,5 @@
 #include "tools/m4d/bench_command.h"
+#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "encoder/src/run/stream_check.h"
 #include "tools/m4d/command_status.h"
 #include "tools/m4d/encode_command.h"
-#include "tools/m4d/stream_check.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

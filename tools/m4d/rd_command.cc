@@ -1,4 +1,6 @@
 #include "tools/m4d/rd_command.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/run_options.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -8,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "encoder/src/run/rd_sweep.h"
 #include "tools/m4d/command_status.h"
-#include "tools/m4d/rd_sweep.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

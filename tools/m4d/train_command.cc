@@ -1,4 +1,5 @@
 #include "tools/m4d/train_command.h"
+#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,20 +13,20 @@
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/run/capture_arguments.h"
+#include "encoder/src/run/prune_share_arguments.h"
+#include "encoder/src/run/quality_curve.h"
+#include "encoder/src/run/rate_weight_arguments.h"
+#include "encoder/src/run/strategy_arguments.h"
+#include "encoder/src/run/view_strip.h"
 #include "encoder/src/train/keyframe_stage.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/progress_bar.h"
 #include "encoder/src/train/view_evaluation.h"
 #include "sdk/src/common/byte_writer.h"
 #include "tools/existing_output.h"
-#include "tools/m4d/capture_arguments.h"
 #include "tools/m4d/command_status.h"
-#include "tools/m4d/prune_share_arguments.h"
-#include "tools/m4d/quality_curve.h"
 #include "tools/m4d/rate_point_name.h"
-#include "tools/m4d/rate_weight_arguments.h"
-#include "tools/m4d/strategy_arguments.h"
-#include "tools/m4d/view_strip.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

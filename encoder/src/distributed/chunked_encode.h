@@ -8,8 +8,8 @@
 // frames' reports, written atomically) in a directory every rank sees, so a run that failed,
 // was killed or stopped resumes with the same command without redoing finished chunks. Rank 0
 // then joins the chunks.
-#ifndef M4D_TOOLS_M4D_CHUNKED_ENCODE_H_
-#define M4D_TOOLS_M4D_CHUNKED_ENCODE_H_
+#ifndef M4D_ENCODER_DISTRIBUTED_CHUNKED_ENCODE_H_
+#define M4D_ENCODER_DISTRIBUTED_CHUNKED_ENCODE_H_
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -59,4 +59,4 @@ Status RunChunkedEncode(const Capture& capture, const EncoderOptions& options,
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_CHUNKED_ENCODE_H_
+#endif  // M4D_ENCODER_DISTRIBUTED_CHUNKED_ENCODE_H_

@@ -1,8 +1,8 @@
 // The processes of a distributed encoding: under an MPI launcher (mpirun, Slurm's srun) each
 // process is one rank of the job; run plainly, m4d is the only rank. MPI is initialised only
 // when a launcher started the process, so the single-process path never needs it.
-#ifndef M4D_TOOLS_M4D_MPI_RANKS_H_
-#define M4D_TOOLS_M4D_MPI_RANKS_H_
+#ifndef M4D_ENCODER_DISTRIBUTED_MPI_RANKS_H_
+#define M4D_ENCODER_DISTRIBUTED_MPI_RANKS_H_
 
 #include <string>
 
@@ -33,4 +33,4 @@ std::string RankPrefix();
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_MPI_RANKS_H_
+#endif  // M4D_ENCODER_DISTRIBUTED_MPI_RANKS_H_

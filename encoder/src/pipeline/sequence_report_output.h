@@ -1,7 +1,7 @@
 // The encoder's report as a person reads it (a table per frame and a summary) and as
 // programs read it (JSON with the same fields).
-#ifndef M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
-#define M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
+#ifndef M4D_ENCODER_PIPELINE_SEQUENCE_REPORT_OUTPUT_H_
+#define M4D_ENCODER_PIPELINE_SEQUENCE_REPORT_OUTPUT_H_
 
 #include <array>
 #include <cstdio>
@@ -55,4 +55,4 @@ Status WriteReportJson(const std::string& path, const SequenceReport& report,
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_SEQUENCE_REPORT_OUTPUT_H_
+#endif  // M4D_ENCODER_PIPELINE_SEQUENCE_REPORT_OUTPUT_H_

@@ -1,7 +1,7 @@
 // BuildGopIndex: the packets split as m4d_probe splits them (m4d_parse_packet_header), frames
 // grouped by end_of_frame, a GOP started at each frame holding a KEYFRAME_DYNAMIC (spec 2), and
 // every packet sent to a decoder so that a damaged payload is an error, not a wrong index.
-#include "tools/gop_index.h"
+#include "encoder/src/stream/gop_index.h"
 
 #include <memory>
 #include <nlohmann/json.hpp>

@@ -2,8 +2,8 @@
 // and frames it holds and whether decoding can start there. A player that streams over HTTP
 // fetches whole GOPs with range requests from it; m4d_probe --gop-index writes it as a sidecar
 // (STREAM.m4d.gops.json) and m4d encode beside its renditions.
-#ifndef M4D_TOOLS_GOP_INDEX_H_
-#define M4D_TOOLS_GOP_INDEX_H_
+#ifndef M4D_ENCODER_STREAM_GOP_INDEX_H_
+#define M4D_ENCODER_STREAM_GOP_INDEX_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -45,4 +45,4 @@ std::string GopIndexJson(const GopIndex& index);
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_GOP_INDEX_H_
+#endif  // M4D_ENCODER_STREAM_GOP_INDEX_H_

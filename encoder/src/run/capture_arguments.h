@@ -1,10 +1,9 @@
 // The dataset argument every m4d command takes: a directory in any supported layout, or
 // "default" or "realistic" for the built-in synthetic scene, clean or with the flaws of a
 // real capture (generated into --scene-dir on first use).
-#ifndef M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_
-#define M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_
+#ifndef M4D_ENCODER_RUN_CAPTURE_ARGUMENTS_H_
+#define M4D_ENCODER_RUN_CAPTURE_ARGUMENTS_H_
 
-#include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,9 +23,6 @@ struct CaptureArguments {
   std::vector<std::function<void(SyntheticSceneOptions*)>> scene_edits;
 };
 
-// Adds DATASET and the loading options to a command.
-void AddCaptureArguments(CLI::App* command, CaptureArguments* args);
-
 // Loads the dataset (generating a built-in scene first if needed), printing what it does.
 Status OpenCapture(const CaptureArguments& args, Capture* capture);
 
@@ -36,4 +32,4 @@ Status CheckViewsBeforeTraining(const Capture& capture, int first_frame, int fra
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_CAPTURE_ARGUMENTS_H_
+#endif  // M4D_ENCODER_RUN_CAPTURE_ARGUMENTS_H_

@@ -1,4 +1,4 @@
-#include "tools/m4d/peak_memory.h"
+#include "encoder/src/run/peak_memory.h"
 
 #include <sys/resource.h>
 

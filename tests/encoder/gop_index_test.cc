@@ -2,7 +2,7 @@
 // gaps, start where the decoder's keyframes start (the first packet of each keyframe, as
 // m4d_probe lists packets), carry the random-access flags of those keyframes, and a damaged or
 // truncated stream is an error with a message, not an index.
-#include "tools/gop_index.h"
+#include "encoder/src/stream/gop_index.h"
 
 #include <gtest/gtest.h>
 

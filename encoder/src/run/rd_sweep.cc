@@ -1,4 +1,4 @@
-#include "tools/m4d/rd_sweep.h"
+#include "encoder/src/run/rd_sweep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,12 +10,12 @@
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/ply/gaussian_ply.h"
+#include "encoder/src/run/capture_arguments.h"
+#include "encoder/src/run/prune_share_arguments.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/keyframe_stage.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/progress_bar.h"
-#include "tools/m4d/capture_arguments.h"
-#include "tools/m4d/prune_share_arguments.h"
 
 namespace m4d {
 namespace {
@@ -165,15 +165,6 @@ const std::vector<double>& PaperLambdas() {
     return lambdas;
   }();
   return kLambdas;
-}
-
-void AddSweepOutputOptions(CLI::App* cmd, SweepOutput* out) {
-  cmd->add_option("-o,--output-dir", out->dir, "streams, reports and plots go here")
-      ->capture_default_str();
-  cmd->add_flag("--reuse", out->reuse,
-                "take streams whose reports in the output directory record the same options, and "
-                "trained keyframes found there, instead of encoding again (to resume a sweep, or "
-                "share runs between rd and ablate)");
 }
 
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {

@@ -1,4 +1,4 @@
-#include "tools/m4d/rendition_encode.h"
+#include "encoder/src/run/rendition_encode.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -13,12 +13,12 @@
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
+#include "encoder/src/run/encode_steps.h"
+#include "encoder/src/run/peak_memory.h"
+#include "encoder/src/run/rendition_manifest.h"
+#include "encoder/src/run/stream_check.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "encoder/src/train/keyframe_stage.h"
-#include "tools/m4d/encode_steps.h"
-#include "tools/m4d/peak_memory.h"
-#include "tools/m4d/rendition_manifest.h"
-#include "tools/m4d/stream_check.h"
 
 namespace m4d {
 

@@ -1,9 +1,8 @@
 // --keyframe-rate-weight, shared by m4d train and encode: lambda_k of the first keyframe's rate
 // term, given, the rate point's, or chosen per capture (rate_weight_selection.h).
-#ifndef M4D_TOOLS_M4D_RATE_WEIGHT_ARGUMENTS_H_
-#define M4D_TOOLS_M4D_RATE_WEIGHT_ARGUMENTS_H_
+#ifndef M4D_ENCODER_RUN_RATE_WEIGHT_ARGUMENTS_H_
+#define M4D_ENCODER_RUN_RATE_WEIGHT_ARGUMENTS_H_
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "encoder/src/capture/capture.h"
@@ -20,9 +19,6 @@ struct RateWeightArguments {
   double max_loss_per_halving_db = PruneShareSelectionOptions().max_loss_per_halving_db;
 };
 
-// Adds --keyframe-rate-weight to a command.
-void AddRateWeightOption(CLI::App* command, RateWeightArguments* args);
-
 // The weight for a keyframe of `frame` trained with `options` (its prune share already
 // resolved): the given one, `fallback` (the rate point's), or the selection's (progress on
 // stderr, its table on stdout; `choice` holds its trials).
@@ -35,4 +31,4 @@ nlohmann::json RateWeightJson(const RateWeightArguments& args, const RateWeightC
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_RATE_WEIGHT_ARGUMENTS_H_
+#endif  // M4D_ENCODER_RUN_RATE_WEIGHT_ARGUMENTS_H_

@@ -1,4 +1,4 @@
-#include "tools/m4d/capture_arguments.h"
+#include "encoder/src/run/capture_arguments.h"
 
 #include <chrono>
 #include <cstdio>
@@ -8,23 +8,9 @@
 #include "encoder/src/dataset/capture_loader.h"
 #include "encoder/src/synthetic/scene_writer.h"
 #include "encoder/src/train/progress_bar.h"
-#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {
-
-// A --scene-* flag: when given, it sets `field` of whichever built-in scene is generated.
-template <typename T>
-void AddSceneEdit(CLI::App* command, const std::string& name, T SyntheticSceneOptions::*field,
-                  const std::string& help, CaptureArguments* args) {
-  command->add_option_function<T>(
-      name,
-      [args, field](const T& value) {
-        args->scene_edits.push_back(
-            [field, value](SyntheticSceneOptions* o) { o->*field = value; });
-      },
-      help);
-}
 
 // The built-in scene a dataset name stands for; false for any other name.
 bool BuiltInScene(const CaptureArguments& args, SyntheticSceneOptions* options) {
@@ -40,43 +26,6 @@ bool BuiltInScene(const CaptureArguments& args, SyntheticSceneOptions* options) 
 }
 
 }  // namespace
-
-void AddCaptureArguments(CLI::App* command, CaptureArguments* args) {
-  command
-      ->add_option("dataset", args->dataset,
-                   "N3DV, transforms.json, COLMAP or Dynamic3DGaussians directory, or "
-                   "'default' for the built-in synthetic scene, 'realistic' for it with the "
-                   "flaws of a real capture")
-      ->required();
-  command->add_option("--scene-dir", args->scene_dir,
-                      "where a built-in scene is generated (default: out/default-scene, "
-                      "out/realistic-scene)");
-  command
-      ->add_option("--test-camera", args->capture.test_camera,
-                   "held-out camera index (-1: none; default: the layout's own held-out cameras, "
-                   "e.g. test_meta.json, else camera 0 as N3DV)")
-      ->check(m4d::Within(-1, 1 << 20));
-  command->add_option("--downscale", args->capture.downscale, "integer image downscale factor")
-      ->check(m4d::Within(1, 64))
-      ->capture_default_str();
-  command->add_option("--first-frame", args->capture.first_frame, "first frame to load")
-      ->check(m4d::AtLeast(0));
-  command->add_option("--frames", args->capture.max_frames, "frames to load (0: all)")
-      ->check(m4d::AtLeast(0));
-  command->add_option("--initial-points", args->capture.initial_points,
-                      "COLMAP sparse model or PLY point cloud for initialisation");
-  AddSceneEdit(command, "--scene-cameras", &SyntheticSceneOptions::cameras,
-               "built-in scene: cameras (default 16; realistic: 4)", args);
-  AddSceneEdit(command, "--scene-width", &SyntheticSceneOptions::width,
-               "built-in scene: image width (default 320)", args);
-  AddSceneEdit(command, "--scene-height", &SyntheticSceneOptions::height,
-               "built-in scene: image height (default 240)", args);
-  AddSceneEdit(command, "--scene-frames", &SyntheticSceneOptions::frames,
-               "built-in scene: frames (default 20)", args);
-  AddSceneEdit(command, "--scene-background-change",
-               &SyntheticSceneOptions::background_change_frame,
-               "built-in scene: frame of the background change (-1: none)", args);
-}
 
 Status OpenCapture(const CaptureArguments& args, Capture* capture) {
   std::string path = args.dataset;

@@ -1,4 +1,4 @@
-#include "tools/m4d/stream_check.h"
+#include "encoder/src/run/stream_check.h"
 
 #include <chrono>
 #include <string>

@@ -1,4 +1,4 @@
-#include "tools/m4d/view_strip.h"
+#include "encoder/src/run/view_strip.h"
 
 #include <algorithm>
 #include <filesystem>

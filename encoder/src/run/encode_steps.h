@@ -1,20 +1,20 @@
 // Steps that `m4d encode` shares between one stream (encode_command.cc) and renditions
 // (rendition_encode.cc): the frame rate and up axis the capture decides, the automatic keyframe
 // settings, a given first keyframe, and the progress on stderr with the frame table on stdout.
-#ifndef M4D_TOOLS_M4D_ENCODE_STEPS_H_
-#define M4D_TOOLS_M4D_ENCODE_STEPS_H_
+#ifndef M4D_ENCODER_RUN_ENCODE_STEPS_H_
+#define M4D_ENCODER_RUN_ENCODE_STEPS_H_
 
 #include <string>
 
 #include "encoder/src/capture/capture.h"
 #include "encoder/src/pipeline/encoder_options.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/run/encode_run.h"
+#include "encoder/src/run/prune_share_arguments.h"
+#include "encoder/src/run/rate_weight_arguments.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/progress_bar.h"
 #include "sdk/src/common/status.h"
-#include "tools/m4d/encode_command.h"
-#include "tools/m4d/prune_share_arguments.h"
-#include "tools/m4d/rate_weight_arguments.h"
 
 namespace m4d {
 
@@ -53,4 +53,4 @@ struct EncodeProgress {
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_ENCODE_STEPS_H_
+#endif  // M4D_ENCODER_RUN_ENCODE_STEPS_H_

@@ -1,11 +1,11 @@
 // m4d encode --renditions: several rate points coded as renditions from one first keyframe
 // trained once, with aligned GOPs, each stream with its JSON report, and the manifest listing
 // them (rendition_manifest.h).
-#ifndef M4D_TOOLS_M4D_RENDITION_ENCODE_H_
-#define M4D_TOOLS_M4D_RENDITION_ENCODE_H_
+#ifndef M4D_ENCODER_RUN_RENDITION_ENCODE_H_
+#define M4D_ENCODER_RUN_RENDITION_ENCODE_H_
 
+#include "encoder/src/run/encode_run.h"
 #include "sdk/src/common/status.h"
-#include "tools/m4d/encode_command.h"
 
 namespace m4d {
 
@@ -21,4 +21,4 @@ Status RunRenditionEncode(const EncodeArguments& args, bool force);
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_RENDITION_ENCODE_H_
+#endif  // M4D_ENCODER_RUN_RENDITION_ENCODE_H_

@@ -1,8 +1,8 @@
 // The rendition manifest of `m4d encode --renditions` (the role of a DASH MPD): per rendition
 // its stream's name, rate point, bandwidth and GOP index, for players that switch rendition
 // at random-access GOP boundaries.
-#ifndef M4D_TOOLS_M4D_RENDITION_MANIFEST_H_
-#define M4D_TOOLS_M4D_RENDITION_MANIFEST_H_
+#ifndef M4D_ENCODER_RUN_RENDITION_MANIFEST_H_
+#define M4D_ENCODER_RUN_RENDITION_MANIFEST_H_
 
 #include <cstdint>
 #include <string>
@@ -35,4 +35,4 @@ Status RenditionManifestJson(const std::vector<RenditionStream>& renditions, std
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_RENDITION_MANIFEST_H_
+#endif  // M4D_ENCODER_RUN_RENDITION_MANIFEST_H_

@@ -1,6 +1,6 @@
 // Images side by side in one PNG (ground truth beside renders), for reports.
-#ifndef M4D_TOOLS_M4D_VIEW_STRIP_H_
-#define M4D_TOOLS_M4D_VIEW_STRIP_H_
+#ifndef M4D_ENCODER_RUN_VIEW_STRIP_H_
+#define M4D_ENCODER_RUN_VIEW_STRIP_H_
 
 #include <string>
 #include <vector>
@@ -19,4 +19,4 @@ Status ViewStrip(const std::vector<const Image*>& images, Image* strip);
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_VIEW_STRIP_H_
+#endif  // M4D_ENCODER_RUN_VIEW_STRIP_H_

@@ -3,10 +3,9 @@
 // (start_size_selection.h) and the share importance pruning removes from it
 // (prune_share_selection.h), each given or chosen per capture. They are chosen together: the
 // chosen start's trunk is the prune share's.
-#ifndef M4D_TOOLS_M4D_PRUNE_SHARE_ARGUMENTS_H_
-#define M4D_TOOLS_M4D_PRUNE_SHARE_ARGUMENTS_H_
+#ifndef M4D_ENCODER_RUN_PRUNE_SHARE_ARGUMENTS_H_
+#define M4D_ENCODER_RUN_PRUNE_SHARE_ARGUMENTS_H_
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "encoder/src/capture/capture.h"
@@ -31,9 +30,6 @@ struct KeyframeShareChoice {
   PruneShareChoice prune;
 };
 
-// Adds the three options to a command (`what` says which trainings the prune share applies to).
-void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArguments* args);
-
 // The sweep share and the prune share for a keyframe of `frame` trained with `options` (whose
 // sweep_share and importance_prune_share are replaced): the given ones, or the selections'
 // (with progress on stderr and their tables on stdout; `choice` holds their trials).
@@ -48,4 +44,4 @@ nlohmann::json StartSizeJson(const PruneShareArguments& args, const StartSizeCho
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_PRUNE_SHARE_ARGUMENTS_H_
+#endif  // M4D_ENCODER_RUN_PRUNE_SHARE_ARGUMENTS_H_

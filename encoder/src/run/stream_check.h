@@ -1,8 +1,8 @@
 // The closed loop seen from outside: a written stream decoded with the SDK's public API must
 // give, frame by frame, the hashes of the encoder's reconstruction. Also what decoding each
 // frame costs, for `m4d bench`.
-#ifndef M4D_TOOLS_M4D_STREAM_CHECK_H_
-#define M4D_TOOLS_M4D_STREAM_CHECK_H_
+#ifndef M4D_ENCODER_RUN_STREAM_CHECK_H_
+#define M4D_ENCODER_RUN_STREAM_CHECK_H_
 
 #include <cstdint>
 #include <string>
@@ -26,4 +26,4 @@ Status CheckDecodedHashes(const std::vector<uint8_t>& stream, const SequenceRepo
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_STREAM_CHECK_H_
+#endif  // M4D_ENCODER_RUN_STREAM_CHECK_H_

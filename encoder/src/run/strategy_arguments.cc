@@ -1,20 +1,10 @@
-#include "tools/m4d/strategy_arguments.h"
+#include "encoder/src/run/strategy_arguments.h"
 
 #include <cstdio>
 
 #include "encoder/src/train/random_start_schedule.h"
 
 namespace m4d {
-
-void AddStrategyOption(CLI::App* command, std::string* name) {
-  command
-      ->add_option("--strategy", *name,
-                   "how keyframe training grows and prunes its Gaussians: 'adc' (the reference "
-                   "3DGS's adaptive density control) or 'mcmc' (3DGS as Markov Chain Monte "
-                   "Carlo: relocation, an exact budget); default: the schedule's (" +
-                       std::string(StrategyName(KeyframeTrainingOptions::Short().strategy)) + ")")
-      ->check(CLI::IsMember({"adc", "mcmc"}));
-}
 
 void ApplyStrategy(const std::string& name, KeyframeTrainingOptions* options) {
   if (!name.empty()) ParseStrategyName(name, &options->strategy);

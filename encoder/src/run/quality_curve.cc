@@ -1,4 +1,4 @@
-#include "tools/m4d/quality_curve.h"
+#include "encoder/src/run/quality_curve.h"
 
 #include <cstdio>
 #include <utility>

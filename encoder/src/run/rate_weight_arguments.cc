@@ -1,10 +1,9 @@
-#include "tools/m4d/rate_weight_arguments.h"
+#include "encoder/src/run/rate_weight_arguments.h"
 
 #include <cstdio>
 #include <string>
 
 #include "encoder/src/train/progress_bar.h"
-#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {
@@ -43,22 +42,6 @@ void PrintChoice(const RateWeightChoice& choice, double bound) {
 }
 
 }  // namespace
-
-void AddRateWeightOption(CLI::App* command, RateWeightArguments* args) {
-  command
-      ->add_option_function<std::string>(
-          "--keyframe-rate-weight",
-          [args](const std::string& value) {
-            args->automatic = value == "auto";
-            args->weight = args->automatic ? -1.0 : std::stod(value);
-          },
-          "lambda_k: while the first keyframe's training is quantization-aware, its loss gains "
-          "this times the bits of the attributes coded as values, per 100 kilobits (default: "
-          "the rate point's, 0); 'auto' holds training views out as --prune-share auto does and "
-          "takes the largest of 1e-3 and 3e-4 that costs them at most --prune-max-loss dB per "
-          "halving of the keyframe's bytes, else 0")
-      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.0, 1e3));
-}
 
 Status ResolveRateWeight(const Capture& capture, int frame, const KeyframeTrainingOptions& options,
                          const RateWeightArguments& args, double fallback, double* weight,

@@ -1,18 +1,17 @@
 // RD sweeps for `m4d rd` and `m4d ablate`: the same encode at several rate weights lambda_2,
 // all starting from one first keyframe (its training does not depend on lambda_2, so it is
 // trained once), and what the reports need from each run.
-#ifndef M4D_TOOLS_M4D_RD_SWEEP_H_
-#define M4D_TOOLS_M4D_RD_SWEEP_H_
+#ifndef M4D_ENCODER_RUN_RD_SWEEP_H_
+#define M4D_ENCODER_RUN_RD_SWEEP_H_
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "encoder/src/metrics/bjontegaard.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
+#include "encoder/src/run/encode_run.h"
 #include "sdk/src/common/status.h"
-#include "tools/m4d/encode_command.h"
 
 namespace m4d {
 
@@ -40,9 +39,6 @@ struct SweepOutput {
   std::string dir;
   bool reuse = false;
 };
-
-// -o,--output-dir and --reuse.
-void AddSweepOutputOptions(CLI::App* command, SweepOutput* out);
 
 // Trains the first keyframe once into dir/keyframe.ply and points args at it, unless
 // args->keyframe_ply is already set; automatic start and prune shares are chosen first and given to
@@ -92,4 +88,4 @@ Status PlotPsnrPerFrame(const RdCurve& curve, const std::string& png);
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_RD_SWEEP_H_
+#endif  // M4D_ENCODER_RUN_RD_SWEEP_H_

@@ -1,8 +1,8 @@
 // Held-out quality against the wall time of a command: `m4d train --curve` evaluates the
 // model on the test cameras as training passes given minutes, so one run gives the whole
 // quality-over-time curve. The clock stops while it evaluates.
-#ifndef M4D_TOOLS_M4D_QUALITY_CURVE_H_
-#define M4D_TOOLS_M4D_QUALITY_CURVE_H_
+#ifndef M4D_ENCODER_RUN_QUALITY_CURVE_H_
+#define M4D_ENCODER_RUN_QUALITY_CURVE_H_
 
 #include <chrono>
 #include <cstddef>
@@ -59,4 +59,4 @@ class QualityCurve {
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_QUALITY_CURVE_H_
+#endif  // M4D_ENCODER_RUN_QUALITY_CURVE_H_

@@ -1,11 +1,10 @@
-#include "tools/m4d/prune_share_arguments.h"
+#include "encoder/src/run/prune_share_arguments.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "encoder/src/train/progress_bar.h"
-#include "tools/number_checks.h"
 
 namespace m4d {
 namespace {
@@ -76,38 +75,6 @@ double ShareValue(float share) {
 }
 
 }  // namespace
-
-void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArguments* args) {
-  command
-      ->add_option_function<std::string>(
-          "--start-share",
-          [args](const std::string& value) {
-            args->sweep_share = value == "auto" ? -1.0 : std::stod(value);
-          },
-          "without initial points, ask the photo-consistent sweep for this share of the start's "
-          "points; 'auto' (the default) holds training views out as --prune-share auto does and "
-          "takes the best of 1 and 0.1, each scored by its held-out PSNR plus --prune-max-loss "
-          "dB per halving of the keyframe's bytes (1 with fewer than 6 training views)")
-      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.001, 1.0));
-  command
-      ->add_option_function<std::string>(
-          "--prune-share",
-          [args](const std::string& value) {
-            args->share = value == "auto" ? -1.0 : std::stod(value);
-          },
-          std::string("when densification ends (") + what +
-              "), remove the least important Gaussians holding this share of the views' "
-              "blending weight; 'auto' (the default) holds one training view out and takes the "
-              "largest of 0.1, 0.03 and 0.01 that costs it at most --prune-max-loss dB per "
-              "halving of the keyframe's bytes, else 0 (0 with fewer than 6 training views)")
-      ->check(CLI::IsMember({"auto"}) | m4d::Within(0.0, 0.99));
-  command
-      ->add_option("--prune-max-loss", args->max_loss_per_halving_db,
-                   "dB of the held-out training views an automatic prune share or start share "
-                   "may cost per halving of the keyframe's bytes")
-      ->check(m4d::Within(0.0, 10.0))
-      ->capture_default_str();
-}
 
 Status ResolveKeyframeShares(const Capture& capture, int frame, const PruneShareArguments& args,
                              KeyframeTrainingOptions* options, KeyframeShareChoice* choice) {

@@ -1,4 +1,4 @@
-#include "tools/m4d/encode_steps.h"
+#include "encoder/src/run/encode_steps.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,10 +1,10 @@
-#include "tools/m4d/rendition_manifest.h"
+#include "encoder/src/run/rendition_manifest.h"
 
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "tools/gop_index.h"
+#include "encoder/src/stream/gop_index.h"
 
 namespace m4d {
 

@@ -1,7 +1,7 @@
 // The process's peak resident memory, which the encoder's report records: a long capture must
 // not need more memory than a short one (frames are loaded when needed and dropped after).
-#ifndef M4D_TOOLS_M4D_PEAK_MEMORY_H_
-#define M4D_TOOLS_M4D_PEAK_MEMORY_H_
+#ifndef M4D_ENCODER_RUN_PEAK_MEMORY_H_
+#define M4D_ENCODER_RUN_PEAK_MEMORY_H_
 
 #include <cstddef>
 
@@ -12,4 +12,4 @@ size_t PeakMemoryBytes();
 
 }  // namespace m4d
 
-#endif  // M4D_TOOLS_M4D_PEAK_MEMORY_H_
+#endif  // M4D_ENCODER_RUN_PEAK_MEMORY_H_
