@@ -20,8 +20,8 @@
 #include "encoder/src/raster/splat_backward.h"
 #include "encoder/src/raster/splat_renderer.h"
 #include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 namespace {

@@ -30,6 +30,7 @@
 #include "encoder/src/video/video_writer.h"
 #include "m4d/m4d.h"
 #include "m4d/m4d_render.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "tools/existing_output.h"
 #include "tools/number_checks.h"
 #include "tools/usage_exit.h"
@@ -107,29 +108,6 @@ bool ReadPackets(const std::string& path, std::vector<std::vector<uint8_t>>* pac
   return packets->size() > 0;  // play what survives the damage
 }
 
-M4dGaussians View(const m4d::GaussianSet& set) {
-  M4dGaussians g = {};
-  g.count = static_cast<uint32_t>(set.size());
-  g.sh_degree = static_cast<uint32_t>(set.sh_degree);
-  g.sh_coefficients = static_cast<uint32_t>(m4d::ShCoefficients(set.sh_degree));
-  g.positions = set.positions.data();
-  g.log_scales = set.log_scales.data();
-  g.rotations = set.rotations.data();
-  g.opacity_logits = set.opacity_logits.data();
-  g.sh = set.sh.data();
-  return g;
-}
-
-void CopyLayer(const M4dGaussians& from, m4d::GaussianSet* to) {
-  to->sh_degree = static_cast<int>(from.sh_degree);
-  to->Resize(from.count);
-  std::copy_n(from.positions, 3 * from.count, to->positions.data());
-  std::copy_n(from.log_scales, 3 * from.count, to->log_scales.data());
-  std::copy_n(from.rotations, 4 * from.count, to->rotations.data());
-  std::copy_n(from.opacity_logits, from.count, to->opacity_logits.data());
-  std::copy_n(from.sh, to->sh.size(), to->sh.data());
-}
-
 // The first static layer of another stream.
 bool StreamBackground(const std::string& path, m4d::GaussianSet* set, std::string* error) {
   std::vector<std::vector<uint8_t>> packets;
@@ -144,9 +122,10 @@ bool StreamBackground(const std::string& path, m4d::GaussianSet* set, std::strin
     const int r = m4d_send_packet(ctx, p.data(), p.size());
     M4dFrame frame;
     if ((r == M4D_OK || r == M4D_ERR_AGAIN) && m4d_get_frame(ctx, &frame) == M4D_OK) {
-      CopyLayer(frame.static_layer, set);
+      *set = m4d::GaussianSet();
+      set->sh_degree = static_cast<int>(frame.static_layer.sh_degree);
+      found = m4d::AppendLayer(frame.static_layer, set).ok();
       m4d_frame_unref(&frame);
-      found = true;
       break;
     }
   }
@@ -409,7 +388,7 @@ class Player {
     } else {
       return true;
     }
-    const M4dGaussians view = View(background_);
+    const M4dGaussians view = m4d::GaussianView(background_);
     if (m4d_set_background(decoder_, &view) != M4D_OK) {
       *error = std::string("background rejected: ") + m4d_last_error(decoder_);
       return false;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 namespace test {

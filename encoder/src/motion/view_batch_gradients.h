@@ -18,7 +18,7 @@
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
 #include "sdk/src/common/thread_pool.h"
-#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/layers/gaussian_views.h"
 
 namespace m4d {
 

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/projection_constants.h"
 
 namespace m4d {

@@ -13,8 +13,8 @@
 #include "encoder/src/raster/tile_focus.h"
 #include "encoder/src/raster/tile_splats.h"
 #include "sdk/src/common/thread_pool.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 #include "sdk/src/render/projected_splats.h"
 
 namespace m4d {

@@ -11,8 +11,8 @@
 #include "encoder/src/raster/render_context.h"
 #include "encoder/src/raster/render_settings.h"
 #include "sdk/src/common/status.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 #include "sdk/src/render/projected_splats.h"
 
 namespace m4d {

@@ -15,7 +15,7 @@
 #include "encoder/src/raster/projection_backward.h"
 #include "sdk/src/common/status.h"
 #include "sdk/src/layers/gaussian_set.h"
-#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/layers/gaussian_views.h"
 
 namespace m4d {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "encoder/src/train/gaussian_model.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

@@ -43,21 +43,6 @@ void HashLayer(const M4dGaussians& g, Md5* md5) {
 
 }  // namespace
 
-M4dGaussians GaussianView(const GaussianSet& set) {
-  M4dGaussians g;
-  std::memset(&g, 0, sizeof(g));
-  g.count = static_cast<uint32_t>(set.size());
-  g.sh_degree = static_cast<uint32_t>(set.sh_degree);
-  g.sh_coefficients = static_cast<uint32_t>(ShCoefficients(set.sh_degree));
-  if (g.count == 0) return g;
-  g.positions = set.positions.data();
-  g.log_scales = set.log_scales.data();
-  g.rotations = set.rotations.data();
-  g.opacity_logits = set.opacity_logits.data();
-  g.sh = set.sh.data();
-  return g;
-}
-
 void FrameHash(const M4dGaussians& static_layer, const M4dGaussians& dynamic_layer,
                uint32_t concealed_layers, uint8_t md5[16]) {
   // A concealed layer hashes as a layer not output (spec 7): its content is the decoder's.

@@ -8,11 +8,9 @@
 #include "m4d/m4d.h"
 #include "sdk/src/decode/decoder.h"
 #include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_views.h"
 
 namespace m4d {
-
-// A public-API view of a set (arrays NULL when empty); valid while the set lives.
-M4dGaussians GaussianView(const GaussianSet& set);
 
 // concealed_layers: M4D_LAYER_* bits of layers lost to damage, hashed as not output.
 void FrameHash(const M4dGaussians& static_layer, const M4dGaussians& dynamic_layer,

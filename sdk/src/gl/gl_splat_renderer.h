@@ -18,8 +18,8 @@
 #include "sdk/src/gl/splat_draw_program.h"
 #include "sdk/src/gl/splat_instances.h"
 #include "sdk/src/layers/gaussian_set.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/camera.h"
-#include "sdk/src/render/gaussian_layer_view.h"
 
 namespace m4d {
 

@@ -18,7 +18,7 @@
 
 #include <cstddef>
 
-#include "sdk/src/render/gaussian_layer_view.h"
+#include "sdk/src/layers/gaussian_views.h"
 #include "sdk/src/render/projected_splats.h"
 #include "sdk/src/render/projection_constants.h"
 

@@ -1,17 +1,22 @@
-// GaussianLayerView: a read-only view of one layer's Gaussians for rendering, as coded (log
-// scales, opacity logits, unnormalised quaternions w, x, y, z, SH [gaussian][k][r, g, b]).
-// Several layers (a frame's static and dynamic sets) render together; Gaussians are indexed
-// globally in concatenation order.
-#ifndef M4D_RENDER_GAUSSIAN_LAYER_VIEW_H_
-#define M4D_RENDER_GAUSSIAN_LAYER_VIEW_H_
+// The views of a set of Gaussians and every conversion between the SDK's containers, in one
+// place. A GaussianSet owns a layer's Gaussians (allocated through the caller's hooks); an
+// M4dGaussians is the public API's view of one (m4d.h); a GaussianLayerView is the renderers'
+// view of one, with the SH degree as an int. All hold the values as coded (log scales,
+// opacity logits, unnormalised quaternions w, x, y, z, SH [gaussian][k][r, g, b]). The
+// encoder's trainable GaussianModel converts to and from a GaussianSet in gaussian_model.h.
+#ifndef M4D_LAYERS_GAUSSIAN_VIEWS_H_
+#define M4D_LAYERS_GAUSSIAN_VIEWS_H_
 
 #include <cstddef>
 
 #include "m4d/m4d.h"
+#include "sdk/src/common/status.h"
 #include "sdk/src/layers/gaussian_set.h"
 
 namespace m4d {
 
+// Several layers (a frame's static and dynamic sets) render together; Gaussians are indexed
+// globally in concatenation order.
 struct GaussianLayerView {
   size_t count = 0;
   int sh_degree = 0;                      // 0..3
@@ -46,6 +51,13 @@ inline GaussianLayerView LayerView(const M4dGaussians& g) {
   return v;
 }
 
+// The public view of a set: pointers into it, NULL when it is empty.
+M4dGaussians GaussianView(const GaussianSet& set);
+
+// Appends a public layer's Gaussians to `out`; a layer of a lower SH degree than out's gets
+// zero higher coefficients. M4D_ERR_INVALID_ARG for inconsistent layer arrays.
+Status AppendLayer(const M4dGaussians& layer, GaussianSet* out);
+
 }  // namespace m4d
 
-#endif  // M4D_RENDER_GAUSSIAN_LAYER_VIEW_H_
+#endif  // M4D_LAYERS_GAUSSIAN_VIEWS_H_
