@@ -1,4 +1,4 @@
-// JPEG reading and writing (image/jpeg_io.h).
+// JPEG reading and writing (encoder/src/image_io/jpeg_io.h).
 
 #include <gtest/gtest.h>
 

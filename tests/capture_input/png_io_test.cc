@@ -1,6 +1,6 @@
-// PNG reading and writing (image/png_io.h). Fixtures for the colour types and bit depths the
-// writer does not produce are built here byte by byte (stored deflate blocks), so the reader
-// is checked against the format itself rather than against libpng's writer.
+// PNG reading and writing (encoder/src/image_io/png_io.h). Fixtures for the colour types and bit
+// depths the writer does not produce are built here byte by byte (stored deflate blocks), so the
+// reader is checked against the format itself rather than against libpng's writer.
 
 #include <gtest/gtest.h>
 

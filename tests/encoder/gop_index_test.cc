@@ -1,5 +1,5 @@
-// The GOP index (tools/gop_index.h) on conformance streams: its GOPs cover the stream without
-// gaps, start where the decoder's keyframes start (the first packet of each keyframe, as
+// The GOP index (encoder/src/stream/gop_index.h) on conformance streams: its GOPs cover the stream
+// without gaps, start where the decoder's keyframes start (the first packet of each keyframe, as
 // m4d_probe lists packets), carry the random-access flags of those keyframes, and a damaged or
 // truncated stream is an error with a message, not an index.
 #include "encoder/src/stream/gop_index.h"

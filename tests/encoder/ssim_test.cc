@@ -1,4 +1,5 @@
-// SSIM (metrics/ssim.h) against the direct double-precision definition (ssim_reference.h).
+// SSIM (metrics/ssim.h) against the direct double-precision definition
+// (tests/encoder/ssim_reference.h).
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// The encoder's up axis (dataset/up_axis_estimate.h): the mean up of a rig's cameras, snapped
-// to an axis, whatever the rig's world convention; nothing when it cancels out.
+// The encoder's up axis (encoder/src/capture/up_axis_estimate.h): the mean up of a rig's cameras,
+// snapped to an axis, whatever the rig's world convention; nothing when it cancels out.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // The rasterizer's backward pass (encoder/src/raster) against central finite differences of
-// an independent double-precision renderer (reference_splat_renderer.h) that replays the
-// forward pass's discrete decisions, so both differentiate the same smooth piece.
+// an independent double-precision renderer (tests/raster/reference_splat_renderer.h) that replays
+// the forward pass's discrete decisions, so both differentiate the same smooth piece.
 //
 // Bound: for every parameter group (positions, log scales, rotations, opacity logits, SH,
 // 2D means) of every scene,

@@ -1,4 +1,4 @@
-// A render focused on the dynamic layer (render/tile_focus.h) and its loss
+// A render focused on the dynamic layer (encoder/src/raster/tile_focus.h) and its loss
 // (metrics/focused_loss.h) give the dynamic layer the gradients of the whole image's loss, for
 // the work of the tiles it covers.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The built-in synthetic scene (encoder/src/synthetic_scene): options, the camera rig, the
+// The built-in synthetic scene (encoder/src/synthetic): options, the camera rig, the
 // rendered content (detail, motion, the emergent object, the background change), the files
 // the writer produces, determinism, the initial point cloud, the in-memory capture, and the
 // realistic variant's flaws (noise, JPEG, exposure, white balance, a left-handed

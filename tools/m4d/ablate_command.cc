@@ -1,6 +1,4 @@
 #include "tools/m4d/ablate_command.h"
-#include "tools/m4d/encode_command.h"
-#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -13,6 +11,8 @@
 
 #include "encoder/src/run/rd_sweep.h"
 #include "tools/m4d/command_status.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/run_options.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

@@ -1,5 +1,4 @@
 #include "tools/m4d/bench_command.h"
-#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include "encoder/src/run/stream_check.h"
 #include "tools/m4d/command_status.h"
 #include "tools/m4d/encode_command.h"
+#include "tools/m4d/run_options.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

@@ -1,5 +1,4 @@
 #include "tools/m4d/encode_command.h"
-#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +24,7 @@
 #include "encoder/src/video/video_writer.h"
 #include "tools/m4d/command_status.h"
 #include "tools/m4d/rate_point_name.h"
+#include "tools/m4d/run_options.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

@@ -1,6 +1,4 @@
 #include "tools/m4d/rd_command.h"
-#include "tools/m4d/encode_command.h"
-#include "tools/m4d/run_options.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +10,8 @@
 
 #include "encoder/src/run/rd_sweep.h"
 #include "tools/m4d/command_status.h"
+#include "tools/m4d/encode_command.h"
+#include "tools/m4d/run_options.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

@@ -1,5 +1,4 @@
 #include "tools/m4d/train_command.h"
-#include "tools/m4d/run_options.h"
 
 #include <algorithm>
 #include <chrono>
@@ -27,6 +26,7 @@
 #include "tools/existing_output.h"
 #include "tools/m4d/command_status.h"
 #include "tools/m4d/rate_point_name.h"
+#include "tools/m4d/run_options.h"
 #include "tools/number_checks.h"
 
 namespace m4d {

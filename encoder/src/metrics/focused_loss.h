@@ -1,14 +1,14 @@
-// The photometric loss of a render restricted to its focus tiles (render/tile_focus.h), each
-// pixel weighted as in the loss of the whole image (photometric_loss.h), the gradient zero
+// The photometric loss of a render restricted to its focus tiles (encoder/src/raster/tile_focus.h),
+// each pixel weighted as in the loss of the whole image (photometric_loss.h), the gradient zero
 // outside the pixels it is taken over. The trained splats' pixels get the whole image's
 // gradient when the SSIM term's reach around them, 10 pixels (two 11x11 windows), holds what
 // the whole render holds there. Either
 // - the focus was grown by a tile around the trained splats: the loss is taken over its
 //   bounding rectangle, the tiles there that were not rendered taken as the target (no loss);
 // - or the caller gives `unfocused`, what the render holds outside the focus (the frozen
-//   layers' render alone, render/frozen_layer_views.h): the loss is taken over the rectangle
-//   grown by a tile, the tiles not rendered read from `unfocused`. The focus then needs no
-//   margin, and a quarter to a half fewer tiles are rendered.
+//   layers' render alone, encoder/src/train/frozen_layer_views.h): the loss is taken over the
+//   rectangle grown by a tile, the tiles not rendered read from `unfocused`. The focus then needs
+//   no margin, and a quarter to a half fewer tiles are rendered.
 // The loss value is the mean over those pixels.
 #ifndef M4D_ENCODER_METRICS_FOCUSED_LOSS_H_
 #define M4D_ENCODER_METRICS_FOCUSED_LOSS_H_

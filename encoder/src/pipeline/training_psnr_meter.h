@@ -1,12 +1,11 @@
 // TrainingPsnrMeter: the mean PSNR over a frame's training views of the GOP's static set with
 // a dynamic set, the measure of the inter-frame mode decisions and of the adaptive GOP. The
 // static set and the cameras stay for the GOP, so each view's static-only render and the
-// static set's projection are made once (render/frozen_layer_views.h); a measure then renders
-// only the tiles the dynamic set reaches (render/tile_focus.h) and takes every other tile's
-// error from the static render, which is what the whole render holds there.
-// PSNR as view_evaluation.h measures it (renders clamped to [0, 1], mean over views), without
-// its SSIM. A frame's decisions measure the same set more than once: results are kept for the
-// frame.
+// static set's projection are made once (encoder/src/train/frozen_layer_views.h); a measure then
+// renders only the tiles the dynamic set reaches (encoder/src/raster/tile_focus.h) and takes every
+// other tile's error from the static render, which is what the whole render holds there. PSNR as
+// view_evaluation.h measures it (renders clamped to [0, 1], mean over views), without its SSIM. A
+// frame's decisions measure the same set more than once: results are kept for the frame.
 #ifndef M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 #define M4D_ENCODER_PIPELINE_TRAINING_PSNR_METER_H_
 
