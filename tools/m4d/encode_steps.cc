@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "encoder/src/capture/up_axis_estimate.h"
+#include "encoder/src/pipeline/stage_options.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "tools/m4d/mpi_ranks.h"

@@ -11,6 +11,7 @@
 #include "encoder/src/io/atomic_file.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
+#include "encoder/src/pipeline/stage_options.h"
 #include "encoder/src/stream/frame_rate.h"
 #include "encoder/src/train/keyframe_stage.h"
 #include "tools/m4d/encode_steps.h"
