@@ -39,7 +39,7 @@ struct GopOptions {
   // (docs/results/2026-11-30-comment-measurements.md).
   float max_psnr_drop = 2.5f;
   // The drop is measured from the keyframe's training PSNR less its noise gap
-  // (SequenceEncoder::NoiseGap); off: from the keyframe's training PSNR itself.
+  // (noise_gap.h); off: from the keyframe's training PSNR itself.
   bool noise_gap = true;
   int fixed_length = 0;  // frames per GOP when not adaptive (0: one GOP)
   int max_length = 300;  // a keyframe at least this often, adaptive or not
@@ -120,7 +120,7 @@ struct EncoderOptions {
   bool compensation_early_decision = true;
   // Motion is a mode decision too: a frame codes its estimated motion only when that raises
   // the training views' mean PSNR above the unmoved dynamic set's by more than this many dB;
-  // otherwise it shows the previous frame's Gaussians again (SequenceEncoder::DecideMotion).
+  // otherwise it shows the previous frame's Gaussians again (motion_decision.h).
   double motion_min_gain = 0.0;
   // And the colour change (APPEARANCE) trained with the motion: coded only when it raises the
   // training views' mean PSNR of the moved set by more than this many dB.

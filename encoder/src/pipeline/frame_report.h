@@ -54,7 +54,7 @@ struct FrameReport {
   double appearance_gain = 0;
   bool appearance_skipped = true;
   // What the adaptive GOP's quality guard compares training_psnr with (dB, inter frames): the
-  // keyframe's training PSNR less its noise gap (SequenceEncoder::NoiseGap).
+  // keyframe's training PSNR less its noise gap (noise_gap.h).
   double psnr_reference = 0;
   // A keyframe that restarted a GOP after its frame was predicted: that prediction's
   // training_psnr (dB), what the retraining started from and has to beat (0: none).

@@ -3,10 +3,12 @@
 // Per GOP: the keyframe model (trained from the capture's points for the first GOP, retrained
 // from the previous frame's decoded state for later ones) is decoupled into static and dynamic
 // sets by the lookahead. Per inter frame t: motion estimation moves frame t-1's *decoded*
-// dynamic set; compensation adds and removes Gaussians; the adaptive GOP rule either codes
-// the frame or starts a new GOP at t (when r_t exceeds tau_GOP, or when the frame's quality
-// over the training views has fallen too far below the keyframe's). Every packet is decoded by the
-// SDK as it is written and the next frame starts from that decode.
+// dynamic set; compensation adds and removes Gaussians; mode decisions keep each of the colour
+// change, the motion and the compensation only where it pays (appearance_decision.h,
+// motion_decision.h, compensation_decision.h); the GOP policy (gop_policy.h) either codes the
+// frame or starts a new GOP at t (when r_t exceeds tau_GOP, or when the frame's quality over the
+// training views has fallen too far below the keyframe's). Every packet is decoded by the SDK as
+// it is written and the next frame starts from that decode.
 //
 // The keyframe's packets carry the GOP's shared MLP, which the first inter frame trains, so a
 // keyframe is written just before its first inter frame. An inter frame is decided before any
@@ -21,17 +23,17 @@
 #include <vector>
 
 #include "encoder/src/capture/capture.h"
-#include "encoder/src/image/image.h"
 #include "encoder/src/motion/motion_estimation.h"
 #include "encoder/src/pipeline/encoder_options.h"
 #include "encoder/src/pipeline/frame_report.h"
-#include "encoder/src/raster/render_settings.h"
+#include "encoder/src/pipeline/gop_policy.h"
+#include "encoder/src/pipeline/held_out_evaluation.h"
+#include "encoder/src/pipeline/retraining_growth.h"
 #include "encoder/src/stream/stream_writer.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/progress_bar.h"
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
-#include "sdk/src/layers/appearance_update.h"
 
 namespace m4d {
 
@@ -45,12 +47,8 @@ struct EncoderCallbacks {
   std::function<void(const std::string& stage, int frame)> stage;
   // The held-out camera's image of a coded frame and the render of its decoded Gaussians
   // (clamped to [0, 1]); only called when the capture has a held-out camera.
-  std::function<void(int frame, const Image& truth, const Image& render)> held_out_view;
+  HeldOutViewCallback held_out_view;
 };
-
-// The training of a keyframe from scratch: options.keyframe with the stream's SH degree,
-// quantization, background, threads and seed.
-KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options);
 
 class SequenceEncoder {
  public:
@@ -74,6 +72,7 @@ class SequenceEncoder {
 
  private:
   struct Gop;
+  struct InterFrame;
   // A keyframe trained from the capture's points (or taken from the caller).
   Status ScratchKeyframe(int frame, GaussianModel* model);
   Status EncodeIndependentFrames();
@@ -88,52 +87,31 @@ class SequenceEncoder {
   Status DynamicFlags(int frame, const GaussianModel& model, const TrainingViews& views,
                       std::vector<uint8_t>* dynamic);
   Status FinishGopStart(int frame, const TrainingViews& views);
-  // Whether a GOP starting at `frame` keeps the static set (GopOptions::random_access_seconds).
-  bool DependentGop(int frame) const;
-  Status EncodeInterFrame(int frame, bool* restart);
   Status WriteKeyframe();
+  // Codes `frame` in the GOP, or sets *restart (nothing of the frame written) when the GOP
+  // policy starts a new GOP at it.
+  Status EncodeInterFrame(int frame, bool* restart);
+  // The decoder's moved set of the frame: motion estimation, then the appearance and motion
+  // decisions.
+  Status Move(InterFrame* f);
+  Status EstimateMotion(InterFrame* f);
+  Status DecideMotionModes(InterFrame* f);
+  // The frame's compensation: trained, then the compensation decision.
+  Status Compensate(InterFrame* f);
+  Status TrainFrameCompensation(InterFrame* f);
+  Status WriteInterFrame(InterFrame* f);
+  // Evaluates the GOP's decoded state as `frame` and reports it.
+  Status ReportFrame(int frame, FrameReport* report);
   Status Restart(int frame);
-  // The keyframe schedule shortened to options_.retrain_iterations for a restart at `frame`.
-  KeyframeTrainingOptions RetrainingOptions(int frame, bool dependent) const;
-  Status Evaluate(int frame, const GaussianSet& static_set, const GaussianSet& dynamic_set,
-                  FrameReport* report);
-  // The keyframe's overfit to its own frame's noise, in dB: its PSNR over the pixels that did
-  // not change between the GOP's first two frames (temporal_change.h), on its own frame's
-  // training views minus on `next` (the second frame's). A keyframe that fitted sensor noise
-  // loses that much on the next frame where nothing moved, so the quality guard compares inter
-  // frames with the keyframe's PSNR less this gap, not with what no inter frame can reach.
-  // 0 on a noise-free capture.
-  Status NoiseGap(const TrainingViews& next, double* gap);
-  // Mode decision (ours): the frame moves its dynamic set only if that raises the training views'
-  // mean PSNR by more than options_.motion_min_gain above showing the previous frame again. On real
-  // captures the motion of an over-dynamic keyframe can make a frame worse than doing nothing (a
-  // classroom capture: docs/results/2026-11-30-comment-measurements.md); a skipped frame's grid is
-  // SkipMotion's.
-  Status DecideMotion(const GaussianSet& still, const GaussianSet& moved, bool* skip,
-                      FrameReport* report);
-  // Applies the frame's colour change to *moved when it raises the training views' PSNR by
-  // more than options_.appearance_min_gain (sets report's appearance gain and skip flag).
-  Status DecideAppearance(const AppearanceUpdate& appearance, GaussianSet* moved,
-                          FrameReport* report);
-  // Training views' PSNR of kept (moved without the removed Gaussians) with added, minus
-  // moved's: the probe of compensation's early decision.
-  Status CompensationGain(const GaussianSet& moved, const GaussianSet& kept,
-                          const GaussianSet& added, double* gain);
-  // Sets report's training PSNR and compensation gain; drops the compensation (nothing added
-  // or removed) when it gains less than options_.compensation_min_gain.
-  Status DecideCompensation(const GaussianSet& moved, CompensationResult* compensation,
-                            FrameReport* report);
-  // Mean PSNR over the frame's training views of the GOP's static set with dynamic_set (the
-  // adaptive GOP's quality measure; TrainingPsnrMeter).
-  Status TrainingPsnr(const GaussianSet& dynamic_set, double* psnr);
-  RenderSettings Settings() const;
+  // The new GOP's keyframe model, retrained from the GOP's state predicted to `frame`.
+  Status Retrain(int frame, bool dependent, GaussianModel* model, RetrainingGrowth* growth);
 
   const Capture& capture_;
   EncoderOptions options_;
   EncoderCallbacks callbacks_;
   SequenceReport* report_ = nullptr;
+  GopPolicy gop_policy_;
   int last_frame_ = 0;
-  int random_access_start_ = 0;  // first frame of the last random-access GOP
   std::unique_ptr<StreamWriter> writer_;
   std::unique_ptr<MotionEstimator> estimator_;
   std::unique_ptr<Gop> gop_;

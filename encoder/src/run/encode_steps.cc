@@ -6,6 +6,7 @@
 #include "encoder/src/capture/up_axis_estimate.h"
 #include "encoder/src/distributed/mpi_ranks.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
+#include "encoder/src/pipeline/stage_options.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/stream/frame_rate.h"
 

@@ -13,6 +13,7 @@
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
+#include "encoder/src/pipeline/stage_options.h"
 #include "encoder/src/run/encode_steps.h"
 #include "encoder/src/run/peak_memory.h"
 #include "encoder/src/run/rendition_manifest.h"

@@ -1,0 +1,26 @@
+// The appearance mode decision: the colour change (APPEARANCE) that motion estimation trained
+// with an inter frame's motion is coded only if it raises the training views' mean PSNR of the
+// moved set by more than EncoderOptions::appearance_min_gain; otherwise its bytes buy nothing.
+#ifndef M4D_ENCODER_PIPELINE_APPEARANCE_DECISION_H_
+#define M4D_ENCODER_PIPELINE_APPEARANCE_DECISION_H_
+
+#include "encoder/src/pipeline/training_psnr_meter.h"
+#include "sdk/src/common/status.h"
+#include "sdk/src/layers/appearance_update.h"
+#include "sdk/src/layers/gaussian_set.h"
+
+namespace m4d {
+
+struct AppearanceDecision {
+  double gain = 0;       // training PSNR of the moved set with the change minus without (dB)
+  bool skipped = false;  // not above the minimum gain: no APPEARANCE is coded
+};
+
+// Applies `appearance` to *moved unless the decision skips it; measures with the meter, which
+// has started the frame.
+Status DecideAppearance(const AppearanceUpdate& appearance, double min_gain,
+                        TrainingPsnrMeter* meter, GaussianSet* moved, AppearanceDecision* decision);
+
+}  // namespace m4d
+
+#endif  // M4D_ENCODER_PIPELINE_APPEARANCE_DECISION_H_
