@@ -80,7 +80,7 @@ void BM_TrainIteration(benchmark::State& state) {
   options.densify_until = 0;
   options.start_sh_degree = 3;
   options.scene_extent = 5.0f;
-  options.threads = static_cast<int>(state.range(3));
+  options.context.threads = static_cast<int>(state.range(3));
   KeyframeTrainer trainer;
   if (!trainer.Init(options, BoxViews(width, height, BoxModel(n, 2)), BoxModel(n, 1)).ok()) {
     std::abort();

@@ -105,9 +105,9 @@ double MeanPsnr(const Scene& s, const GaussianSet& moved, const std::vector<uint
 
 CompensationCandidates Candidates(const Scene& s, float threshold) {
   std::vector<float> gradient;
-  const float black[3] = {0, 0, 0};
   EXPECT_TRUE(
-      MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, black, 0, &gradient).ok());
+      MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, EncodeContext(), &gradient)
+          .ok());
   std::vector<float> motion(7 * s.moved.size(), 0.0f);
   CompensationThresholds t;
   t.gradient = threshold;
@@ -212,10 +212,9 @@ TEST(CompensationTrainingTest, EarlyDecisionEndsOnlyTheTrainingThatWouldNotPay) 
 // view sees: shared with the training, it removes the same ones and trains the same result.
 TEST(CompensationTrainingTest, SharedBlendWeightsRemoveTheSameGaussians) {
   Scene s = MakeScene();
-  const float black[3] = {0, 0, 0};
   std::vector<float> gradient, weight;
-  ASSERT_TRUE(MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, black, 0, &gradient,
-                                        nullptr, &weight)
+  ASSERT_TRUE(MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, EncodeContext(),
+                                        &gradient, nullptr, &weight)
                   .ok());
   ASSERT_EQ(weight.size(), s.moved.size());
   EXPECT_EQ(weight.back(), 0.0f);  // behind every camera
@@ -245,10 +244,10 @@ TEST(CompensationTrainingTest, SharedBlendWeightsRemoveTheSameGaussians) {
 // layer's render: each moved Gaussian gets what a pass over the whole image gives it.
 TEST(CompensationTrainingTest, ViewspaceGradientsAreTheWholeImagesMean) {
   Scene s = MakeScene();
-  const float black[3] = {0, 0, 0};
   std::vector<float> measured;
   ASSERT_TRUE(
-      MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, black, 0, &measured).ok());
+      MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, EncodeContext(), &measured)
+          .ok());
   const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.moved)};
   const size_t offset = s.static_set.size(), n = s.moved.size();
   std::vector<float> mean2d(2 * (offset + n)), sum(n, 0.0f);

@@ -39,8 +39,8 @@ KeyframeTrainingOptions Options(DensificationStrategyKind strategy, bool random)
   // The starts compared alone: the shell joins the default start, not the random one.
   o.background_shell_points = 0;
   o.quantization_aware_iterations = 0;
-  o.seed = 2;
-  o.threads = 2;
+  o.context.seed = 2;
+  o.context.threads = 2;
   return o;
 }
 

@@ -114,8 +114,8 @@ KeyframeTrainingOptions TestOptions() {
   o.opacity_reset_interval = 200;
   o.sh_degree_interval = 50;
   o.densification.max_gaussians = 2000;
-  o.seed = 3;
-  o.threads = 2;
+  o.context.seed = 3;
+  o.context.threads = 2;
   return o;
 }
 
@@ -202,9 +202,9 @@ TEST(KeyframeTrainerTest, SameSeedSameModelWhateverTheThreads) {
   const Scene scene = MakeScene();
   KeyframeTrainingOptions options = TestOptions();
   options.iterations = 220;  // through a densification and an opacity reset
-  options.threads = 1;
+  options.context.threads = 1;
   const TrainingRun one = Train(scene, options);
-  options.threads = 2;
+  options.context.threads = 2;
   const TrainingRun two = Train(scene, options);
   const TrainingRun again = Train(scene, options);
   for (const TrainingRun* other : {&two, &again}) {
@@ -215,7 +215,7 @@ TEST(KeyframeTrainerTest, SameSeedSameModelWhateverTheThreads) {
     EXPECT_EQ(other->model.opacity_logits, one.model.opacity_logits);
     EXPECT_EQ(other->model.sh, one.model.sh);
   }
-  options.seed = 4;
+  options.context.seed = 4;
   const TrainingRun reseeded = Train(scene, options);
   EXPECT_NE(reseeded.model.positions, one.model.positions);
 }

@@ -91,7 +91,7 @@ DecouplingOptions BlobOptions() {
   options.thresholds.displacement = 0.3f;
   options.thresholds.scale_change = 0.5f;
   options.thresholds.error = 0.2f;
-  options.seed = 1;
+  options.context.seed = 1;
   return options;
 }
 

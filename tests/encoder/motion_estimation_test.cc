@@ -92,7 +92,7 @@ TEST(MotionEstimationTest, LearnsATranslation) {
   options.train_mlp = true;
   options.rate_weight = 1e-6;
   options.sh_degree = 0;
-  options.seed = 4;
+  options.context.seed = 4;
   MotionEstimationResult result;
   const GridBox box = DynamicGridBox(s.dynamic_set);
   ASSERT_TRUE(estimator.Estimate(s.views, s.static_set, s.dynamic_set, box, options, &result).ok());
@@ -133,7 +133,7 @@ TEST(MotionEstimationTest, RateTermShrinksTheGrid) {
     options.train_mlp = true;
     options.rate_weight = rate_weight;
     options.sh_degree = 0;
-    options.seed = 5;
+    options.context.seed = 5;
     MotionEstimationResult result;
     EXPECT_TRUE(estimator
                     .Estimate(s.views, s.static_set, s.dynamic_set, DynamicGridBox(s.dynamic_set),
@@ -182,7 +182,7 @@ TEST(MotionEstimationTest, LearnsAColourChangeWithTheMotion) {
     options.train_mlp = true;
     options.rate_weight = 1e-6;
     options.sh_degree = 0;
-    options.seed = 4;
+    options.context.seed = 4;
     options.appearance_step = appearance_step;
     return estimator.Estimate(s.views, s.static_set, s.dynamic_set, DynamicGridBox(s.dynamic_set),
                               options, result);

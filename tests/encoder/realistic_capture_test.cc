@@ -49,7 +49,7 @@ EncoderOptions SmallOptions() {
   o.motion.iterations = 30;
   o.first_motion_iterations = 60;
   o.compensation.iterations = 20;
-  o.threads = 2;
+  o.context.threads = 2;
   return o;
 }
 

@@ -127,7 +127,7 @@ EncoderOptions SmallOptions() {
   o.motion.iterations = 40;
   o.first_motion_iterations = 80;
   o.compensation.iterations = 30;
-  o.threads = 2;
+  o.context.threads = 2;
   return o;
 }
 

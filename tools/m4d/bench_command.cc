@@ -112,7 +112,7 @@ Status RunBench(BenchArguments args) {
   SequenceReport report;
   M4D_RETURN_IF_ERROR(RunEncode(run, &report));
   nlohmann::json doc = {{"options", EncodeOptionsJson(run)},
-                        {"threads", run.encoder.threads},
+                        {"threads", run.encoder.context.threads},
                         {"encode", EncodeTable(report)}};
   nlohmann::json decode;
   M4D_RETURN_IF_ERROR(DecodeTable(run.output, report, args.decode_runs, &decode));

@@ -213,8 +213,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->delimiter(',')
       ->check(m4d::Within(0, 4096));
   AddRateWeightOption(cmd, &a->keyframe_rate);
-  cmd->add_option("--threads", o.threads, "threads (0: all cores)")->check(m4d::AtLeast(0));
-  cmd->add_option("--seed", o.seed, "random seed")->check(m4d::AtLeast(0))->capture_default_str();
+  cmd->add_option("--threads", o.context.threads, "threads (0: all cores)")->check(m4d::AtLeast(0));
+  cmd->add_option("--seed", o.context.seed, "random seed")
+      ->check(m4d::AtLeast(0))
+      ->capture_default_str();
 }
 
 void AddEncodeCommand(CLI::App* app, int* exit_code) {

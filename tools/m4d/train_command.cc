@@ -156,8 +156,8 @@ Status RunTrain(const TrainArguments& args) {
   if (args.prune_below >= 0) options.min_importance_pixels = static_cast<float>(args.prune_below);
   if (args.quantization_aware >= 0) options.quantization_aware_iterations = args.quantization_aware;
   M4D_RETURN_IF_ERROR(TrainingRate(args, &options));
-  options.threads = args.threads;
-  options.seed = args.seed;
+  options.context.threads = args.threads;
+  options.context.seed = args.seed;
   KeyframeShareChoice choice;
   M4D_RETURN_IF_ERROR(ResolveKeyframeShares(capture, args.frame, args.prune, &options, &choice));
   RateWeightArguments rate = args.rate;

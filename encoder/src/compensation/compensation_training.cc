@@ -18,11 +18,10 @@
 namespace m4d {
 namespace {
 
-RenderSettings Settings(int sh_degree, const float* background, int threads) {
+RenderSettings Settings(int sh_degree, const EncodeContext& context) {
   RenderSettings settings;
-  settings.threads = threads;
   settings.sh_degree = sh_degree;
-  std::copy(background, background + 3, settings.background);
+  context.ApplyTo(&settings);
   return settings;
 }
 
@@ -96,11 +95,11 @@ Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers,
 }  // namespace
 
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
-                                 const GaussianSet& moved, int sh_degree, const float* background,
-                                 int threads, std::vector<float>* mean_gradient,
+                                 const GaussianSet& moved, int sh_degree,
+                                 const EncodeContext& encode, std::vector<float>* mean_gradient,
                                  FrozenLayerViews* static_views, std::vector<float>* blend_weight) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
-  const RenderSettings settings = Settings(sh_degree, background, threads);
+  const RenderSettings settings = Settings(sh_degree, encode);
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
     own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
@@ -165,7 +164,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   if (candidates.removed.size() != moved.size()) {
     return Status(M4D_ERR_INVALID_ARG, "compensation: removal flags differ from the moved set");
   }
-  const RenderSettings settings = Settings(options.sh_degree, options.background, options.threads);
+  const RenderSettings settings = Settings(options.sh_degree, options.context);
   if (sharing.moved_blend_weight && sharing.moved_blend_weight->size() != moved.size()) {
     return Status(M4D_ERR_INVALID_ARG, "compensation: blend weights differ from the moved set");
   }
@@ -212,7 +211,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   BackwardWorkspace workspace;
   FocusedLoss loss(options.ssim_weight);
   Image rendered, grad;
-  TrainingRandom rng(options.seed);
+  TrainingRandom rng(options.context.seed);
   std::vector<int> order;
   size_t cursor = 0;
   double color_sum = 0;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "encoder/src/compensation/compensation_candidates.h"
+#include "encoder/src/train/encode_context.h"
 #include "encoder/src/train/frozen_layer_views.h"
 #include "encoder/src/train/learning_rate_schedule.h"
 #include "encoder/src/train/training_views.h"
@@ -41,9 +42,7 @@ struct CompensationOptions {
   float scene_extent = 1.0f;
   double ssim_weight = 0.2;
   int sh_degree = 3;
-  float background[3] = {0, 0, 0};
-  int threads = 0;
-  uint64_t seed = 0;
+  EncodeContext context;
   // The early decision: the probe given to TrainCompensation measures the gain of the
   // Gaussians trained so far after probe_iteration / 2 and probe_iteration iterations (0:
   // never). When the gain extrapolated along that line to the last iteration stays under
@@ -75,8 +74,8 @@ struct CompensationResult {
 // given, receives each moved Gaussian's blend weight summed over the views, from the same
 // renders.
 Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& static_set,
-                                 const GaussianSet& moved, int sh_degree, const float* background,
-                                 int threads, std::vector<float>* mean_gradient,
+                                 const GaussianSet& moved, int sh_degree,
+                                 const EncodeContext& encode, std::vector<float>* mean_gradient,
                                  FrozenLayerViews* static_views = nullptr,
                                  std::vector<float>* blend_weight = nullptr);
 

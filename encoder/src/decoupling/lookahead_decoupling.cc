@@ -25,9 +25,7 @@ KeyframeTrainingOptions FineTuneOptions(const DecouplingOptions& options, int sh
   o.sh_degree_interval = 0;
   o.start_sh_degree = sh_degree;
   o.scene_extent = scene_extent;
-  std::copy(options.background, options.background + 3, o.background);
-  o.seed = options.seed;
-  o.threads = options.threads;
+  o.context = options.context;
   return o;
 }
 
@@ -151,9 +149,8 @@ Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyf
                         const DecouplingOptions& options, DecouplingResult* result) {
   if (steps.empty()) return Status(M4D_ERR_INVALID_ARG, "decoupling: no lookahead frame");
   RenderSettings settings;
-  settings.threads = options.threads;
   settings.sh_degree = keyframe.sh_degree;
-  std::copy(options.background, options.background + 3, settings.background);
+  options.context.ApplyTo(&settings);
   result->measures = LookaheadMeasures();
   GaussianModel tuned = keyframe;
   for (const TrainingViews& views : steps) {
@@ -201,8 +198,8 @@ Status DecoupleKeyframe(const GaussianModel& keyframe, const TrainingViews& keyf
     NearestNeighbours knn;
     M4D_RETURN_IF_ERROR(knn.Build(keyframe.positions.data(), keyframe.size()));
     neighbours.resize(keyframe.size() * static_cast<size_t>(t.neighbours));
-    knn.QueryAll(keyframe.positions.data(), keyframe.size(), t.neighbours, true, options.threads,
-                 neighbours.data(), nullptr);
+    knn.QueryAll(keyframe.positions.data(), keyframe.size(), t.neighbours, true,
+                 options.context.threads, neighbours.data(), nullptr);
   }
   result->dynamic = ClassifyDynamic(m, t, neighbours);
   SplitModel(keyframe, result->dynamic, &result->dynamic_model, &result->static_model);

@@ -24,6 +24,7 @@
 
 #include "encoder/src/decoupling/motion_classification.h"
 #include "encoder/src/decoupling/temporal_change.h"
+#include "encoder/src/train/encode_context.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/training_views.h"
@@ -38,9 +39,7 @@ struct DecouplingOptions {
   // paper's 5e-4 for its Gaussian optimisations); scales keep the keyframe's rate.
   float position_learning_rate = 5e-4f;
   DecouplingThresholds thresholds;
-  float background[3] = {0, 0, 0};
-  int threads = 0;
-  uint64_t seed = 0;
+  EncodeContext context;
 };
 
 struct DecouplingResult {

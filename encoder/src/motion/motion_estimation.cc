@@ -163,9 +163,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   std::vector<float> entropy_grad(entropy_.parameters().size());
 
   RenderSettings settings;
-  settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
-  std::copy(options.background, options.background + 3, settings.background);
+  options.context.ApplyTo(&settings);
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
     own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
@@ -175,7 +174,7 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   ViewBatchResult gradients;
   std::vector<float> moved_p(3 * n), moved_q(4 * n);
 
-  TrainingRandom rng(options.seed);
+  TrainingRandom rng(options.context.seed);
   std::vector<int> order;
   size_t cursor = 0;
   MotionField field;

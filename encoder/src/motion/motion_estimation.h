@@ -28,6 +28,7 @@
 #include "encoder/src/motion/motion_stencil.h"
 #include "encoder/src/raster/render_context.h"
 #include "encoder/src/raster/splat_backward.h"
+#include "encoder/src/train/encode_context.h"
 #include "encoder/src/train/frozen_layer_views.h"
 #include "encoder/src/train/training_views.h"
 #include "sdk/src/common/status.h"
@@ -60,9 +61,7 @@ struct MotionEstimationOptions {
   float appearance_learning_rate = 0.5f;
   double ssim_weight = kDefaultSsimWeight;
   int sh_degree = 3;
-  float background[3] = {0, 0, 0};
-  uint64_t seed = 0;
-  int threads = 0;
+  EncodeContext context;
 };
 
 struct MotionEstimationResult {

@@ -14,6 +14,7 @@
 #include "encoder/src/decoupling/lookahead_decoupling.h"
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/motion/motion_estimation.h"
+#include "encoder/src/train/encode_context.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "sdk/src/layers/motion_config.h"
 
@@ -138,9 +139,7 @@ struct EncoderOptions {
   // coding). The GOP options, decoupling and the inter-frame stages do not apply.
   bool independent_frames = false;
 
-  float background[3] = {0, 0, 0};
-  int threads = 0;
-  uint64_t seed = 1;
+  EncodeContext context = {{0.0f, 0.0f, 0.0f}, 0, 1};
 };
 
 // Checks the options that the stages do not check themselves.

@@ -259,7 +259,7 @@ Status SequenceEncoder::FinishGopStart(int frame, const TrainingViews& views) {
   M4D_RETURN_IF_ERROR(gop.meter->StartFrame(views));
   M4D_RETURN_IF_ERROR(gop.meter->Measure(gop.dynamic_set, &gop.keyframe_report.training_psnr));
   gop.box = DynamicGridBox(gop.dynamic_set, 0.005f, 0.995f, 0.15f);
-  estimator_->StartGop(options_.seed + static_cast<uint64_t>(frame));
+  estimator_->StartGop(options_.context.seed + static_cast<uint64_t>(frame));
   gop.mlp = estimator_->mlp();
   return DecodedMlp(gop.mlp, options_, &gop.decoded_mlp);
 }
@@ -402,14 +402,14 @@ Status SequenceEncoder::TrainFrameCompensation(InterFrame* f) {
   Gop& gop = *gop_;
   if (callbacks_.stage) callbacks_.stage("compensation", f->frame);
   std::vector<float> gradient, blend_weight;
-  M4D_RETURN_IF_ERROR(MeasureViewspaceGradients(
-      f->views, gop.static_set, f->moved, options_.sh_degree, options_.background, options_.threads,
-      &gradient, gop.static_views.get(), &blend_weight));
+  M4D_RETURN_IF_ERROR(MeasureViewspaceGradients(f->views, gop.static_set, f->moved,
+                                                options_.sh_degree, options_.context, &gradient,
+                                                gop.static_views.get(), &blend_weight));
   std::vector<float> outputs =
       f->motion_on ? f->motion.motion : std::vector<float>(7 * f->moved.size());
   CompensationCandidates candidates =
       ProposeCompensation(f->moved, gradient, outputs, options_.compensation_thresholds,
-                          static_cast<uint32_t>(options_.seed + f->frame));
+                          static_cast<uint32_t>(options_.context.seed + f->frame));
   CompensationSharing sharing;
   sharing.static_views = gop.static_views.get();
   sharing.moved_blend_weight = &blend_weight;
@@ -491,7 +491,7 @@ Status SequenceEncoder::Retrain(int frame, bool dependent, GaussianModel* model,
     g.gaussians_per_pixel = o.max_gaussians_per_pixel;
     g.unexplained = options_.decoupling.change;
     g.render = EncoderRenderSettings(options_);
-    g.seed = o.seed;
+    g.seed = o.context.seed;
     M4D_RETURN_IF_ERROR(GrowForUnexplained(views, g, &start, growth));
     o.densification.max_gaussians = std::min(o.densification.max_gaussians, growth->cap);
   }

@@ -11,11 +11,9 @@ namespace m4d {
 KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options) {
   KeyframeTrainingOptions o = options.keyframe;
   o.sh_degree = options.sh_degree;
-  o.threads = options.threads;
-  o.seed = options.seed;
+  o.context = options.context;
   o.quantization = options.quantization;
   o.rate_weight = options.keyframe_rate_weight;
-  std::copy(options.background, options.background + 3, o.background);
   return o;
 }
 
@@ -36,17 +34,13 @@ KeyframeTrainingOptions RetrainingOptions(const EncoderOptions& options, int fra
   o.quantization = options.quantization;
   o.rate_weight = options.keyframe_rate_weight;
   o.start_sh_degree = options.sh_degree;
-  o.threads = options.threads;
-  o.seed = options.seed + static_cast<uint64_t>(frame);
-  std::copy(options.background, options.background + 3, o.background);
+  o.context = options.context.Reseeded(options.context.seed + static_cast<uint64_t>(frame));
   return o;
 }
 
 DecouplingOptions KeyframeDecoupling(const EncoderOptions& options, int frame) {
   DecouplingOptions o = options.decoupling;
-  o.threads = options.threads;
-  o.seed = options.seed + static_cast<uint64_t>(frame);
-  std::copy(options.background, options.background + 3, o.background);
+  o.context = options.context.Reseeded(options.context.seed + static_cast<uint64_t>(frame));
   return o;
 }
 
@@ -59,9 +53,7 @@ MotionEstimationOptions FrameMotionOptions(const EncoderOptions& options, int fr
   o.rate_weight = MotionRateWeight(o.rate_weight, length, options.motion_rate_decay);
   if (view_count < options.appearance_min_views) o.appearance_step = 0.0f;
   o.sh_degree = options.sh_degree;
-  o.threads = options.threads;
-  o.seed = options.seed + 7919u * static_cast<uint64_t>(frame);
-  std::copy(options.background, options.background + 3, o.background);
+  o.context = options.context.Reseeded(options.context.seed + 7919u * static_cast<uint64_t>(frame));
   return o;
 }
 
@@ -70,9 +62,8 @@ CompensationOptions FrameCompensationOptions(const EncoderOptions& options, int 
   CompensationOptions o = options.compensation;
   o.scene_extent = scene_extent;
   o.sh_degree = options.sh_degree;
-  o.threads = options.threads;
-  o.seed = options.seed + 104729u * static_cast<uint64_t>(frame);
-  std::copy(options.background, options.background + 3, o.background);
+  o.context =
+      options.context.Reseeded(options.context.seed + 104729u * static_cast<uint64_t>(frame));
   o.probe_min_gain = options.compensation_min_gain;
   return o;
 }
@@ -96,9 +87,8 @@ StreamWriterOptions WriterOptions(const EncoderOptions& o, int frames, const Cap
 
 RenderSettings EncoderRenderSettings(const EncoderOptions& options) {
   RenderSettings settings;
-  settings.threads = options.threads;
   settings.sh_degree = options.sh_degree;
-  std::copy(options.background, options.background + 3, settings.background);
+  options.context.ApplyTo(&settings);
   return settings;
 }
 

@@ -172,7 +172,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
                                        : nlohmann::json(o.keyframe_rate_weight)},
           {"fps", args.fps},
           {"chunk_frames", args.chunk_frames},
-          {"seed", o.seed}};
+          {"seed", o.context.seed}};
 }
 
 KeyframeTrainingOptions KeyframeSchedule(const EncodeArguments& args) {

@@ -51,10 +51,8 @@ std::string PlotHeader(const std::string& png, const char* title, const char* x,
 KeyframeTrainingOptions SweepKeyframeTraining(const EncodeArguments& args) {
   KeyframeTrainingOptions o = KeyframeSchedule(args);
   o.sh_degree = args.encoder.sh_degree;
-  o.threads = args.encoder.threads;
-  o.seed = args.encoder.seed;
+  o.context = args.encoder.context;
   o.rate_weight = std::max(0.0, args.keyframe_rate.weight);
-  std::copy(args.encoder.background, args.encoder.background + 3, o.background);
   return o;
 }
 

@@ -22,8 +22,8 @@ Status PhotoConsistentStart(const TrainingViews& views, const KeyframeTrainingOp
   PhotoConsistencyOptions photo;
   photo.points = points;
   photo.min_views = min_views;
-  photo.seed = options.seed;
-  photo.threads = options.threads;
+  photo.seed = options.context.seed;
+  photo.threads = options.context.threads;
   return PhotoConsistentPoints(views, photo, cloud);
 }
 
@@ -38,7 +38,7 @@ Status RandomStart(const TrainingViews& views, const KeyframeTrainingOptions& op
   }
   RandomStartOptions random;
   random.points = points;
-  random.seed = options.seed;
+  random.seed = options.context.seed;
   PointCloud cloud;
   M4D_RETURN_IF_ERROR(ViewedRandomPoints(views, lo, hi, random, &cloud));
   return InitialiseFromPoints(cloud, init, initial);
@@ -117,7 +117,7 @@ Status InitialKeyframeModel(const Capture& capture, const TrainingViews& views,
   if (tried == nullptr) tried = &starts;
   tried->clear();
   PointInitialisationOptions init;
-  init.threads = options.threads;
+  init.threads = options.context.threads;
   init.sh_degree = options.sh_degree;
   // The MCMC paper starts every Gaussian half opaque: relocation needs opaque ones to sample.
   if (options.strategy == DensificationStrategyKind::kMcmc) init.opacity = 0.5f;

@@ -132,7 +132,8 @@ Status ValidateTrainingOptions(const KeyframeTrainingOptions& o) {
   if (!(o.scene_extent >= 0.0f) || !std::isfinite(o.scene_extent)) {
     return OptionError("scene extent");
   }
-  if (o.threads < 0 || o.threads > kMaxRenderThreads) return OptionError("thread count");
+  if (o.context.threads < 0 || o.context.threads > kMaxRenderThreads)
+    return OptionError("thread count");
   M4D_RETURN_IF_ERROR(ValidateCoarseToFine(o.coarse_to_fine));
   const DensificationSettings& d = o.densification;
   if (!(d.gradient_threshold >= 0.0f) || !(d.percent_dense >= 0.0f) ||
@@ -192,10 +193,10 @@ Status KeyframeTrainer::Init(const KeyframeTrainingOptions& options, TrainingVie
   strategy_->Reset(model_.size());
   iteration_ = 0;
   active_sh_degree_ = std::min(options.start_sh_degree, model_.sh_degree);
-  rng_.emplace(options.seed);
+  rng_.emplace(options.context.seed);
   view_order_.clear();
   view_cursor_ = 0;
-  pool_ = std::make_shared<ThreadPool>(options.threads);
+  pool_ = std::make_shared<ThreadPool>(options.context.threads);
   loss_ = PhotometricLoss(options.ssim_weight);
   camera_colour_.Init(views_.size(), options.camera_colour_learning_rate);
   filter_ = SmoothingFilter3d();
@@ -221,9 +222,8 @@ int KeyframeTrainer::NextView() {
 
 RenderSettings KeyframeTrainer::Settings() const {
   RenderSettings settings;
-  settings.threads = options_.threads;
   settings.sh_degree = active_sh_degree_;
-  for (int c = 0; c < 3; ++c) settings.background[c] = options_.background[c];
+  options_.context.ApplyTo(&settings);
   return settings;
 }
 

@@ -41,6 +41,7 @@
 #include "encoder/src/train/coarse_to_fine.h"
 #include "encoder/src/train/densification.h"
 #include "encoder/src/train/densification_strategy.h"
+#include "encoder/src/train/encode_context.h"
 #include "encoder/src/train/gaussian_model.h"
 #include "encoder/src/train/learning_rate_schedule.h"
 #include "encoder/src/train/mcmc_densification.h"
@@ -120,7 +121,7 @@ struct KeyframeTrainingOptions {
   float camera_colour_learning_rate = 0.0f;
   // The first iterations fit downscaled views (coarse_to_fine.h; levels 0: none).
   CoarseToFineSchedule coarse_to_fine;
-  float background[3] = {0.0f, 0.0f, 0.0f};
+  EncodeContext context;
   float scene_extent = 0.0f;  // 0: CameraSceneBounds of the training cameras
   // Without points: this many Gaussians from photo_consistent_points.h, or at random in the
   // part of the cameras' box two views see (random_initialisation; random_start.h).
@@ -134,8 +135,6 @@ struct KeyframeTrainingOptions {
   // spreads 20000: on Panoptic basketball the dome wall then stands where the held-out cameras see
   // it (docs/results/, 2026-11-29).
   size_t background_shell_points = 0;
-  uint64_t seed = 0;
-  int threads = 0;  // 0: the hardware's concurrency
 
   // The reference implementation's defaults (30000 iterations).
   static KeyframeTrainingOptions Reference();
