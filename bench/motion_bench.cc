@@ -16,7 +16,7 @@
 #include <random>
 #include <vector>
 
-#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/layers/mlp_weights_writer.h"
 #include "encoder/src/layers/motion_grid_writer.h"
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/byte_writer.h"

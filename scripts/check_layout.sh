@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Checks the library boundaries of docs/architecture.md on the includes: every include is
-# rooted at the repository (it names the tree that holds it), the SDK includes nothing of
-# the encoder, the rasterizer nothing of the encoder but itself, the encoder's pipeline nothing
-# of the capture input, and neither of them anything of the synthetic content, the tools or
-# the tests.
+# Checks the library boundaries of docs/architecture.md on the includes, and the header guards:
+# every include is rooted at the repository (it names the tree that holds it); the SDK includes
+# nothing of the encoder; the rasterizer nothing of the encoder but itself; the pipeline
+# (m4d_encoder) nothing of the libraries above it; the capture input neither the synthetic
+# content nor the runs; none of them the tools or the tests; each header's guard follows its
+# path.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,6 +38,15 @@ forbid "the pipeline includes a library above it, the tools or the tests" \
   "(encoder/src/$above/|tools/|tests/)" "${pipeline[@]}"
 forbid "the capture input includes the synthetic content, the tools or the tests" \
   '(encoder/src/(run|synthetic)/|tools/|tests/)' encoder/src/{dataset,video,ply,image_io}
+# A header's guard is its rooted path without "src": sdk/src/render/camera.h guards with
+# M4D_SDK_RENDER_CAMERA_H_.
+while read -r header; do
+  guard=M4D_$(echo "${header%.h}" | sed 's|/src/|/|' | tr 'a-z/.-' 'A-Z___')_H_
+  if ! grep -q "^#ifndef $guard\$" "$header"; then
+    echo "layout: $header: its guard is not $guard" >&2
+    failed=1
+  fi
+done < <(git ls-files 'sdk/src/*.h' 'encoder/src/*.h' 'tools/*.h' 'tests/*.h' 'bench/*.h')
 if [ "$failed" = 0 ]; then
   echo "layout: the library boundaries hold"
 fi

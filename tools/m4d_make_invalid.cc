@@ -23,7 +23,7 @@
 #include <draco/core/draco_types.h>
 
 #include "encoder/src/entropy/symbol_block_writer.h"
-#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/adaptive_attributes_writer.h"
 #include "encoder/src/stream/stream_writer.h"
 #include "encoder/src/synthetic/synthetic_content.h"
 #include "m4d/m4d.h"

@@ -1,7 +1,7 @@
 // Helpers for dataset loader tests: per-test temporary directories, a synthetic camera rig,
 // projection, view images and a small zip writer (for .npz fixtures).
-#ifndef M4D_TESTS_DATASET_TEST_UTIL_H_
-#define M4D_TESTS_DATASET_TEST_UTIL_H_
+#ifndef M4D_TESTS_CAPTURE_INPUT_DATASET_TEST_UTIL_H_
+#define M4D_TESTS_CAPTURE_INPUT_DATASET_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -222,4 +222,4 @@ inline std::vector<uint8_t> MakeZip(const std::vector<ZipEntryData>& entries, Zi
 }  // namespace testing
 }  // namespace m4d
 
-#endif  // M4D_TESTS_DATASET_TEST_UTIL_H_
+#endif  // M4D_TESTS_CAPTURE_INPUT_DATASET_TEST_UTIL_H_

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "encoder/src/entropy/binary_range_encoder.h"
-#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/adaptive_attributes_writer.h"
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/byte_writer.h"

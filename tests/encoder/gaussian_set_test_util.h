@@ -1,6 +1,6 @@
 // Helpers shared by the gaussian_set() coding tests.
-#ifndef M4D_TESTS_GAUSSIAN_SET_TEST_UTIL_H_
-#define M4D_TESTS_GAUSSIAN_SET_TEST_UTIL_H_
+#ifndef M4D_TESTS_ENCODER_GAUSSIAN_SET_TEST_UTIL_H_
+#define M4D_TESTS_ENCODER_GAUSSIAN_SET_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 
@@ -79,4 +79,4 @@ inline double RelativeDifference(const std::array<double, 9>& a, const std::arra
 }  // namespace testing
 }  // namespace m4d
 
-#endif  // M4D_TESTS_GAUSSIAN_SET_TEST_UTIL_H_
+#endif  // M4D_TESTS_ENCODER_GAUSSIAN_SET_TEST_UTIL_H_

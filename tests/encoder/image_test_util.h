@@ -1,6 +1,6 @@
 // Helpers for image file tests: per-test temporary paths and byte-level edits.
-#ifndef M4D_TESTS_IMAGE_TEST_UTIL_H_
-#define M4D_TESTS_IMAGE_TEST_UTIL_H_
+#ifndef M4D_TESTS_ENCODER_IMAGE_TEST_UTIL_H_
+#define M4D_TESTS_ENCODER_IMAGE_TEST_UTIL_H_
 
 #include <gtest/gtest.h>
 
@@ -44,4 +44,4 @@ inline void PutBigEndian32(uint32_t v, std::vector<uint8_t>* out) {
 }  // namespace testing
 }  // namespace m4d
 
-#endif  // M4D_TESTS_IMAGE_TEST_UTIL_H_
+#endif  // M4D_TESTS_ENCODER_IMAGE_TEST_UTIL_H_

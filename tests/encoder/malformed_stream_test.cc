@@ -5,7 +5,7 @@
 
 #include <functional>
 
-#include "encoder/src/stream/sequence_header_writer.h"
+#include "encoder/src/bitstream/sequence_header_writer.h"
 #include "sdk/src/common/byte_writer.h"
 #include "tests/encoder/stream_test_util.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "encoder/src/entropy/symbol_block_writer.h"
-#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/layers/mlp_weights_writer.h"
 #include "encoder/src/layers/motion_grid_writer.h"
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/byte_writer.h"

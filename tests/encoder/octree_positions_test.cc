@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "encoder/src/entropy/symbol_block_writer.h"
-#include "encoder/src/layers/octree_position_writer.h"
+#include "encoder/src/layers/octree_positions_writer.h"
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/byte_writer.h"
 #include "sdk/src/layers/octree_positions.h"

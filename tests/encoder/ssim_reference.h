@@ -1,8 +1,8 @@
 // A direct, double-precision SSIM for checking the fast one: every map value sums its 11 x 11
 // window with explicit loops, exactly as the definition reads (ssim.h), and derivatives are
 // central finite differences of it.
-#ifndef M4D_TESTS_SSIM_REFERENCE_H_
-#define M4D_TESTS_SSIM_REFERENCE_H_
+#ifndef M4D_TESTS_ENCODER_SSIM_REFERENCE_H_
+#define M4D_TESTS_ENCODER_SSIM_REFERENCE_H_
 
 #include <algorithm>
 #include <cmath>
@@ -116,4 +116,4 @@ inline Image CorrelatedImage(const Image& x, std::mt19937* rng) {
 }  // namespace testing
 }  // namespace m4d
 
-#endif  // M4D_TESTS_SSIM_REFERENCE_H_
+#endif  // M4D_TESTS_ENCODER_SSIM_REFERENCE_H_

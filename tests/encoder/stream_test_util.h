@@ -1,7 +1,7 @@
 // Helpers for stream-level tests that write their streams: synthetic streams from the
 // reference writer (the decoder-side helpers are tests/sdk/packet_test_util.h).
-#ifndef M4D_TESTS_STREAM_TEST_UTIL_H_
-#define M4D_TESTS_STREAM_TEST_UTIL_H_
+#ifndef M4D_TESTS_ENCODER_STREAM_TEST_UTIL_H_
+#define M4D_TESTS_ENCODER_STREAM_TEST_UTIL_H_
 
 #include <cstdint>
 #include <stdexcept>
@@ -115,4 +115,4 @@ inline TestStream MakeTestStream(const TestStreamShape& shape = TestStreamShape(
 }  // namespace testing
 }  // namespace m4d
 
-#endif  // M4D_TESTS_STREAM_TEST_UTIL_H_
+#endif  // M4D_TESTS_ENCODER_STREAM_TEST_UTIL_H_

@@ -2,7 +2,7 @@
 // 0.8 streams, out of range above 6, and reported by m4d_get_stream_info.
 #include <gtest/gtest.h>
 
-#include "encoder/src/stream/sequence_header_writer.h"
+#include "encoder/src/bitstream/sequence_header_writer.h"
 #include "sdk/src/bitstream/sequence_header.h"
 #include "sdk/src/common/byte_writer.h"
 #include "tests/encoder/stream_test_util.h"

@@ -6,8 +6,8 @@
 // and whether its alpha was clamped, where each pixel stopped) and can replay them, so that
 // finite differences see one smooth piece of the piecewise-smooth image: exactly what an
 // analytic gradient differentiates.
-#ifndef M4D_TESTS_REFERENCE_SPLAT_RENDERER_H_
-#define M4D_TESTS_REFERENCE_SPLAT_RENDERER_H_
+#ifndef M4D_TESTS_RASTER_REFERENCE_SPLAT_RENDERER_H_
+#define M4D_TESTS_RASTER_REFERENCE_SPLAT_RENDERER_H_
 
 #include <algorithm>
 #include <cmath>
@@ -326,4 +326,4 @@ class ReferenceRenderer {
 }  // namespace test
 }  // namespace m4d
 
-#endif  // M4D_TESTS_REFERENCE_SPLAT_RENDERER_H_
+#endif  // M4D_TESTS_RASTER_REFERENCE_SPLAT_RENDERER_H_

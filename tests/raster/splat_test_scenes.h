@@ -1,6 +1,6 @@
 // Small random scenes and cameras for the rasterizer tests.
-#ifndef M4D_TESTS_SPLAT_TEST_SCENES_H_
-#define M4D_TESTS_SPLAT_TEST_SCENES_H_
+#ifndef M4D_TESTS_RASTER_SPLAT_TEST_SCENES_H_
+#define M4D_TESTS_RASTER_SPLAT_TEST_SCENES_H_
 
 #include <cmath>
 #include <cstddef>
@@ -98,4 +98,4 @@ inline std::vector<GaussianLayerView> Views(const std::vector<GaussianSet>& sets
 }  // namespace test
 }  // namespace m4d
 
-#endif  // M4D_TESTS_SPLAT_TEST_SCENES_H_
+#endif  // M4D_TESTS_RASTER_SPLAT_TEST_SCENES_H_

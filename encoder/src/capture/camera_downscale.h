@@ -1,7 +1,7 @@
 // A camera's intrinsics at a lower resolution, matching images area-averaged by the same
 // integer factor (area_resize.h).
-#ifndef M4D_ENCODER_DATASET_CAMERA_DOWNSCALE_H_
-#define M4D_ENCODER_DATASET_CAMERA_DOWNSCALE_H_
+#ifndef M4D_ENCODER_CAPTURE_CAMERA_DOWNSCALE_H_
+#define M4D_ENCODER_CAPTURE_CAMERA_DOWNSCALE_H_
 
 #include "sdk/src/common/status.h"
 #include "sdk/src/render/camera.h"
@@ -15,4 +15,4 @@ Status DownscaleCamera(int factor, Camera* camera);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_DATASET_CAMERA_DOWNSCALE_H_
+#endif  // M4D_ENCODER_CAPTURE_CAMERA_DOWNSCALE_H_

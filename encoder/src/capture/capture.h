@@ -2,8 +2,8 @@
 // loaded from: cameras per frame (intrinsics at the loaded resolution, world-to-camera in
 // OpenCV axes, see sdk/src/render/camera.h), images decoded on demand, an initial point
 // cloud and the held-out test camera.
-#ifndef M4D_ENCODER_DATASET_CAPTURE_H_
-#define M4D_ENCODER_DATASET_CAPTURE_H_
+#ifndef M4D_ENCODER_CAPTURE_CAPTURE_H_
+#define M4D_ENCODER_CAPTURE_CAPTURE_H_
 
 #include <cstdint>
 #include <memory>
@@ -53,4 +53,4 @@ struct Capture {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_DATASET_CAPTURE_H_
+#endif  // M4D_ENCODER_CAPTURE_CAPTURE_H_

@@ -1,7 +1,7 @@
 // PointCloud: coloured points that initialise a keyframe's Gaussians (COLMAP points3D, a
 // dataset's own initial cloud, or points sampled from the synthetic scene's meshes).
-#ifndef M4D_ENCODER_DATASET_POINT_CLOUD_H_
-#define M4D_ENCODER_DATASET_POINT_CLOUD_H_
+#ifndef M4D_ENCODER_CAPTURE_POINT_CLOUD_H_
+#define M4D_ENCODER_CAPTURE_POINT_CLOUD_H_
 
 #include <cstddef>
 #include <vector>
@@ -17,4 +17,4 @@ struct PointCloud {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_DATASET_POINT_CLOUD_H_
+#endif  // M4D_ENCODER_CAPTURE_POINT_CLOUD_H_

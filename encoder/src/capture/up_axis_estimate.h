@@ -2,8 +2,8 @@
 // hold cameras level more often than not, so the cameras' mean up direction (-y of each
 // OpenCV camera: the negated second row of its world-to-camera rotation) points near the
 // world's up; it is snapped to the nearest axis.
-#ifndef M4D_ENCODER_DATASET_UP_AXIS_ESTIMATE_H_
-#define M4D_ENCODER_DATASET_UP_AXIS_ESTIMATE_H_
+#ifndef M4D_ENCODER_CAPTURE_UP_AXIS_ESTIMATE_H_
+#define M4D_ENCODER_CAPTURE_UP_AXIS_ESTIMATE_H_
 
 #include <string>
 #include <vector>
@@ -27,4 +27,4 @@ std::string UpAxisName(int up_axis);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_DATASET_UP_AXIS_ESTIMATE_H_
+#endif  // M4D_ENCODER_CAPTURE_UP_AXIS_ESTIMATE_H_

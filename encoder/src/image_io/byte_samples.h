@@ -1,6 +1,6 @@
 // Conversions between float samples and the 8-bit samples of image files.
-#ifndef M4D_ENCODER_IMAGE_BYTE_SAMPLES_H_
-#define M4D_ENCODER_IMAGE_BYTE_SAMPLES_H_
+#ifndef M4D_ENCODER_IMAGE_IO_BYTE_SAMPLES_H_
+#define M4D_ENCODER_IMAGE_IO_BYTE_SAMPLES_H_
 
 #include <cstdint>
 
@@ -17,4 +17,4 @@ inline float ByteToFloat(uint8_t b) { return static_cast<float>(b) / 255.0f; }
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_IMAGE_BYTE_SAMPLES_H_
+#endif  // M4D_ENCODER_IMAGE_IO_BYTE_SAMPLES_H_

@@ -1,6 +1,6 @@
 // Whole-file reads and writes for the image codecs, which decode from and encode to memory.
-#ifndef M4D_ENCODER_IMAGE_FILE_BYTES_H_
-#define M4D_ENCODER_IMAGE_FILE_BYTES_H_
+#ifndef M4D_ENCODER_IMAGE_IO_FILE_BYTES_H_
+#define M4D_ENCODER_IMAGE_IO_FILE_BYTES_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -28,4 +28,4 @@ Status WriteFileBytes(const std::string& path, const std::vector<uint8_t>& bytes
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_IMAGE_FILE_BYTES_H_
+#endif  // M4D_ENCODER_IMAGE_IO_FILE_BYTES_H_

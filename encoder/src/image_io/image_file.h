@@ -1,6 +1,6 @@
 // Reading an image file whose format is given by its content, for dataset loaders.
-#ifndef M4D_ENCODER_IMAGE_IMAGE_FILE_H_
-#define M4D_ENCODER_IMAGE_IMAGE_FILE_H_
+#ifndef M4D_ENCODER_IMAGE_IO_IMAGE_FILE_H_
+#define M4D_ENCODER_IMAGE_IO_IMAGE_FILE_H_
 
 #include <string>
 
@@ -15,4 +15,4 @@ Status ReadImageFile(const std::string& path, Image* image);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_IMAGE_IMAGE_FILE_H_
+#endif  // M4D_ENCODER_IMAGE_IO_IMAGE_FILE_H_

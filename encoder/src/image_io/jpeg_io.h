@@ -8,8 +8,8 @@
 // Errors: M4D_ERR_INVALID_ARG for a file that cannot be opened, M4D_ERR_BITSTREAM for corrupt,
 // truncated or non-JPEG data, M4D_ERR_LIMIT for images beyond kMaxImageBytes (rejected from
 // the header, before decoding) and for files larger than kMaxImageBytes.
-#ifndef M4D_ENCODER_IMAGE_JPEG_IO_H_
-#define M4D_ENCODER_IMAGE_JPEG_IO_H_
+#ifndef M4D_ENCODER_IMAGE_IO_JPEG_IO_H_
+#define M4D_ENCODER_IMAGE_IO_JPEG_IO_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -32,4 +32,4 @@ Status EncodeJpeg(const Image& image, int quality, std::vector<uint8_t>* bytes);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_IMAGE_JPEG_IO_H_
+#endif  // M4D_ENCODER_IMAGE_IO_JPEG_IO_H_

@@ -9,8 +9,8 @@
 // without the PNG signature, M4D_ERR_BITSTREAM for corrupt or truncated data, M4D_ERR_LIMIT for
 // images beyond kMaxImageBytes (rejected from the header, before decoding) and for files
 // larger than kMaxImageBytes.
-#ifndef M4D_ENCODER_IMAGE_PNG_IO_H_
-#define M4D_ENCODER_IMAGE_PNG_IO_H_
+#ifndef M4D_ENCODER_IMAGE_IO_PNG_IO_H_
+#define M4D_ENCODER_IMAGE_IO_PNG_IO_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -31,4 +31,4 @@ Status EncodePng(const Image& image, std::vector<uint8_t>* bytes);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_IMAGE_PNG_IO_H_
+#endif  // M4D_ENCODER_IMAGE_IO_PNG_IO_H_

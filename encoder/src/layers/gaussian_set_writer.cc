@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "encoder/src/entropy/symbol_block_writer.h"
-#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/adaptive_attributes_writer.h"
 #include "encoder/src/layers/codebook.h"
-#include "encoder/src/layers/octree_position_writer.h"
+#include "encoder/src/layers/octree_positions_writer.h"
 #include "encoder/src/layers/rotation_symmetry.h"
 #include "encoder/src/layers/smallest_three.h"
 #include "sdk/src/common/spec_limits.h"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/layers/mlp_weights_writer.h"
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/byte_writer.h"
 

@@ -1,7 +1,7 @@
 // The lane sums of eight Lanes vectors at once (a transpose-and-add), for the backward
 // pass's per-splat reductions: eight horizontal sums for about the price of two.
-#ifndef M4D_ENCODER_RENDER_LANE_SUMS_H_
-#define M4D_ENCODER_RENDER_LANE_SUMS_H_
+#ifndef M4D_ENCODER_RASTER_LANE_SUMS_H_
+#define M4D_ENCODER_RASTER_LANE_SUMS_H_
 
 #include "sdk/src/render/lanes.h"
 
@@ -32,4 +32,4 @@ inline Lanes LaneSums8(const Lanes v[8]) {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_LANE_SUMS_H_
+#endif  // M4D_ENCODER_RASTER_LANE_SUMS_H_

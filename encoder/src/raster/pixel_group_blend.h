@@ -7,8 +7,8 @@
 // mean (splat_projection.h): the 3-sigma square of the reference rasterizer, applied per
 // pixel rather than per tile so that the image does not depend on the tiling, narrowed to
 // where alpha can reach 1/255.
-#ifndef M4D_RENDER_PIXEL_GROUP_BLEND_H_
-#define M4D_RENDER_PIXEL_GROUP_BLEND_H_
+#ifndef M4D_ENCODER_RASTER_PIXEL_GROUP_BLEND_H_
+#define M4D_ENCODER_RASTER_PIXEL_GROUP_BLEND_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -84,4 +84,4 @@ inline void BlendPixelGroup(const TileSplats& s, PixelGroup* g, OnBlend&& on_ble
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_PIXEL_GROUP_BLEND_H_
+#endif  // M4D_ENCODER_RASTER_PIXEL_GROUP_BLEND_H_

@@ -4,8 +4,8 @@
 // the SH colour on the position, the normalisation of the quaternion, the activations, and
 // the clamped X/Z, Y/Z of the Jacobian (a clamped coordinate then depends on depth only).
 // Clamped colour channels pass no gradient.
-#ifndef M4D_ENCODER_RENDER_PROJECTION_BACKWARD_H_
-#define M4D_ENCODER_RENDER_PROJECTION_BACKWARD_H_
+#ifndef M4D_ENCODER_RASTER_PROJECTION_BACKWARD_H_
+#define M4D_ENCODER_RASTER_PROJECTION_BACKWARD_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -43,4 +43,4 @@ void ZeroGradients(const GaussianLayerView& layer, size_t i, const LayerGradient
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_PROJECTION_BACKWARD_H_
+#endif  // M4D_ENCODER_RASTER_PROJECTION_BACKWARD_H_

@@ -9,8 +9,8 @@
 // R_i = (what lies behind splat i) / T_(i+1), starting from bg, and RA_i likewise for A:
 // dC/dalpha_i = T_i (c_i - R_i) and dA/dalpha_i = T_i (1 - RA_i). A clamped alpha (0.99)
 // is constant: its splat then gets no gradient through alpha.
-#ifndef M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
-#define M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
+#ifndef M4D_ENCODER_RASTER_RASTERIZER_BACKWARD_H_
+#define M4D_ENCODER_RASTER_RASTERIZER_BACKWARD_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -90,4 +90,4 @@ bool BackpropagateTile(const ProjectedSplats& splats, const TileBins& bins, size
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_RASTERIZER_BACKWARD_H_
+#endif  // M4D_ENCODER_RASTER_RASTERIZER_BACKWARD_H_

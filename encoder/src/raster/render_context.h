@@ -1,7 +1,7 @@
 // RenderContext: the outputs of RenderForward and everything the backward pass needs from
 // it, kept between renders so that repeated renders reuse their buffers.
-#ifndef M4D_RENDER_RENDER_CONTEXT_H_
-#define M4D_RENDER_RENDER_CONTEXT_H_
+#ifndef M4D_ENCODER_RASTER_RENDER_CONTEXT_H_
+#define M4D_ENCODER_RASTER_RENDER_CONTEXT_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -53,4 +53,4 @@ struct RenderContext {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_RENDER_CONTEXT_H_
+#endif  // M4D_ENCODER_RASTER_RENDER_CONTEXT_H_

@@ -1,6 +1,6 @@
 // RenderSettings: how RenderForward renders (see splat_renderer.h).
-#ifndef M4D_RENDER_RENDER_SETTINGS_H_
-#define M4D_RENDER_RENDER_SETTINGS_H_
+#ifndef M4D_ENCODER_RASTER_RENDER_SETTINGS_H_
+#define M4D_ENCODER_RASTER_RENDER_SETTINGS_H_
 
 #include <cstddef>
 
@@ -27,4 +27,4 @@ struct RenderSettings {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_RENDER_SETTINGS_H_
+#endif  // M4D_ENCODER_RASTER_RENDER_SETTINGS_H_

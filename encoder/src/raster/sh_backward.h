@@ -1,7 +1,7 @@
 // Gradient of the SH colour (sdk/src/render/sh_evaluation.h) with respect to the direction:
 // the partial derivatives of each basis function in x, y and z.
-#ifndef M4D_ENCODER_RENDER_SH_BACKWARD_H_
-#define M4D_ENCODER_RENDER_SH_BACKWARD_H_
+#ifndef M4D_ENCODER_RASTER_SH_BACKWARD_H_
+#define M4D_ENCODER_RASTER_SH_BACKWARD_H_
 
 #include "sdk/src/render/sh_evaluation.h"
 
@@ -49,4 +49,4 @@ void ShBasisGradient(int degree, T x, T y, T z, T grad[][3]) {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_SH_BACKWARD_H_
+#endif  // M4D_ENCODER_RASTER_SH_BACKWARD_H_

@@ -6,8 +6,8 @@
 // entries; each Gaussian then sums its entries in a fixed order and runs the projection
 // backward, in parallel over Gaussians. No atomics; the result does not depend on the
 // thread count.
-#ifndef M4D_ENCODER_RENDER_SPLAT_BACKWARD_H_
-#define M4D_ENCODER_RENDER_SPLAT_BACKWARD_H_
+#ifndef M4D_ENCODER_RASTER_SPLAT_BACKWARD_H_
+#define M4D_ENCODER_RASTER_SPLAT_BACKWARD_H_
 
 #include <vector>
 
@@ -54,4 +54,4 @@ Status RenderBackward(const float* dl_dcolor, const float* dl_dalpha, RenderCont
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_SPLAT_BACKWARD_H_
+#endif  // M4D_ENCODER_RASTER_SPLAT_BACKWARD_H_

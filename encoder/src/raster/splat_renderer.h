@@ -5,8 +5,8 @@
 //
 // Work is spread over a persistent pool of threads: preprocessing over Gaussians, blending
 // over 16x16 tiles. The result does not depend on the thread count.
-#ifndef M4D_RENDER_SPLAT_RENDERER_H_
-#define M4D_RENDER_SPLAT_RENDERER_H_
+#ifndef M4D_ENCODER_RASTER_SPLAT_RENDERER_H_
+#define M4D_ENCODER_RASTER_SPLAT_RENDERER_H_
 
 #include "encoder/src/raster/render_context.h"
 #include "encoder/src/raster/render_settings.h"
@@ -47,4 +47,4 @@ Status ProjectLayer(const Camera& camera, const GaussianLayerView& layer, int sh
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_SPLAT_RENDERER_H_
+#endif  // M4D_ENCODER_RASTER_SPLAT_RENDERER_H_

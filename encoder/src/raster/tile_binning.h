@@ -2,8 +2,8 @@
 // front to back. One global sort of the visible splats by depth (radix, stable, ties in index
 // order), then a stable fill of the per-tile lists, in parallel over chunks of the sorted
 // order; the result does not depend on the thread count.
-#ifndef M4D_RENDER_TILE_BINNING_H_
-#define M4D_RENDER_TILE_BINNING_H_
+#ifndef M4D_ENCODER_RASTER_TILE_BINNING_H_
+#define M4D_ENCODER_RASTER_TILE_BINNING_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -44,4 +44,4 @@ Status BinSplats(const ProjectedSplats& splats, int tiles_x, int tiles_y, Thread
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_TILE_BINNING_H_
+#endif  // M4D_ENCODER_RASTER_TILE_BINNING_H_

@@ -2,8 +2,8 @@
 // margin. The encoder's inter-frame training moves only the dynamic layer over a fixed static
 // layer: every other tile is the same in every step and passes no gradient to what is trained,
 // so rendering only the focus tiles gives the same trained gradients for a fraction of the work.
-#ifndef M4D_RENDER_TILE_FOCUS_H_
-#define M4D_RENDER_TILE_FOCUS_H_
+#ifndef M4D_ENCODER_RASTER_TILE_FOCUS_H_
+#define M4D_ENCODER_RASTER_TILE_FOCUS_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -39,4 +39,4 @@ void ClipToFocus(const TileRect& rect, ProjectedSplats* splats);
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_TILE_FOCUS_H_
+#endif  // M4D_ENCODER_RASTER_TILE_FOCUS_H_

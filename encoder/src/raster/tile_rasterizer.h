@@ -2,8 +2,8 @@
 // to back (pixel_group_blend.h) and writes its colour, alpha, final transmittance and last
 // contributor; optionally each entry's blend weight and error-weighted blend weight, by slot
 // (tile_binning.h).
-#ifndef M4D_RENDER_TILE_RASTERIZER_H_
-#define M4D_RENDER_TILE_RASTERIZER_H_
+#ifndef M4D_ENCODER_RASTER_TILE_RASTERIZER_H_
+#define M4D_ENCODER_RASTER_TILE_RASTERIZER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -38,4 +38,4 @@ void ClearTile(const TileBins& bins, size_t tile, const TileTarget& target);
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_TILE_RASTERIZER_H_
+#endif  // M4D_ENCODER_RASTER_TILE_RASTERIZER_H_

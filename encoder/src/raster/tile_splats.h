@@ -1,8 +1,8 @@
 // TileSplats: the splats of one tile, front to back, gathered into contiguous arrays so that
 // eight of them can be tested against a pixel group at once. Padded to a multiple of kLanes
 // with entries whose extent is negative, which never touch a pixel.
-#ifndef M4D_RENDER_TILE_SPLATS_H_
-#define M4D_RENDER_TILE_SPLATS_H_
+#ifndef M4D_ENCODER_RASTER_TILE_SPLATS_H_
+#define M4D_ENCODER_RASTER_TILE_SPLATS_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -42,4 +42,4 @@ class TileSplatBuffer {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_TILE_SPLATS_H_
+#endif  // M4D_ENCODER_RASTER_TILE_SPLATS_H_

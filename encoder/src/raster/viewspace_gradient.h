@@ -3,8 +3,8 @@
 // coordinates: its pixel coordinate is ((ndc + 1) * size - 1) / 2, so
 // dL/dndc = dL/dpixel * size / 2 per axis. Its densification compares the norm of that
 // gradient, averaged over the views in which the Gaussian is visible, with 0.0002.
-#ifndef M4D_ENCODER_RENDER_VIEWSPACE_GRADIENT_H_
-#define M4D_ENCODER_RENDER_VIEWSPACE_GRADIENT_H_
+#ifndef M4D_ENCODER_RASTER_VIEWSPACE_GRADIENT_H_
+#define M4D_ENCODER_RASTER_VIEWSPACE_GRADIENT_H_
 
 #include <cmath>
 
@@ -23,4 +23,4 @@ inline float ViewspaceGradientNorm(const float dl_dmean_pixels[2], int width, in
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_VIEWSPACE_GRADIENT_H_
+#endif  // M4D_ENCODER_RASTER_VIEWSPACE_GRADIENT_H_

@@ -2,10 +2,10 @@
 
 #include <string>
 
+#include "encoder/src/bitstream/sequence_header_writer.h"
 #include "encoder/src/entropy/symbol_block_writer.h"
 #include "encoder/src/layers/appearance_update_writer.h"
-#include "encoder/src/layers/mlp_writer.h"
-#include "encoder/src/stream/sequence_header_writer.h"
+#include "encoder/src/layers/mlp_weights_writer.h"
 #include "sdk/src/bitstream/packet_header.h"
 #include "sdk/src/common/byte_writer.h"
 #include "sdk/src/common/spec_limits.h"

@@ -2,8 +2,8 @@
 // (torso, head, upper and lower arms and legs) whose joints swing over time in a walking
 // gait while the body sways along x and turns a little. Each part's mesh is in its own
 // joint frame; FigurePose gives the part-to-world transforms at a frame.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_ARTICULATED_FIGURE_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_ARTICULATED_FIGURE_H_
+#ifndef M4D_ENCODER_SYNTHETIC_ARTICULATED_FIGURE_H_
+#define M4D_ENCODER_SYNTHETIC_ARTICULATED_FIGURE_H_
 
 #include <array>
 
@@ -40,4 +40,4 @@ std::array<glm::mat4, kFigurePartCount> FigurePose(int frame);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_ARTICULATED_FIGURE_H_
+#endif  // M4D_ENCODER_SYNTHETIC_ARTICULATED_FIGURE_H_

@@ -4,8 +4,8 @@
 // interpolated from its neighbours can reach it. With CaptureRealism::sparse_rig the cameras
 // stand on one wide arc instead, at head height, and camera 0 is again the one nearest its
 // middle.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_CAMERA_RIG_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_CAMERA_RIG_H_
+#ifndef M4D_ENCODER_SYNTHETIC_CAMERA_RIG_H_
+#define M4D_ENCODER_SYNTHETIC_CAMERA_RIG_H_
 
 #include <string>
 #include <vector>
@@ -24,4 +24,4 @@ std::vector<std::string> CameraNames(int count);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_CAMERA_RIG_H_
+#endif  // M4D_ENCODER_SYNTHETIC_CAMERA_RIG_H_

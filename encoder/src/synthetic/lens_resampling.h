@@ -3,8 +3,8 @@
 // principal point moved by the margins) so that every distorted pixel has content, then
 // resampled: each pixel of the distorted view takes the canvas, bilinearly, at the
 // undistorted position of its centre (Undistort of dataset/lens_distortion.h).
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_LENS_RESAMPLING_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_LENS_RESAMPLING_H_
+#ifndef M4D_ENCODER_SYNTHETIC_LENS_RESAMPLING_H_
+#define M4D_ENCODER_SYNTHETIC_LENS_RESAMPLING_H_
 
 #include <cstdint>
 #include <memory>
@@ -47,4 +47,4 @@ class LensResampler {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_LENS_RESAMPLING_H_
+#endif  // M4D_ENCODER_SYNTHETIC_LENS_RESAMPLING_H_

@@ -1,7 +1,7 @@
 // Building blocks of the synthetic scene's meshes: quads, boxes, spheres and cylinders with
 // outward normals and texture coordinates.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_MESH_SHAPES_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_MESH_SHAPES_H_
+#ifndef M4D_ENCODER_SYNTHETIC_MESH_SHAPES_H_
+#define M4D_ENCODER_SYNTHETIC_MESH_SHAPES_H_
 
 #include "encoder/src/synthetic/triangle_mesh.h"
 
@@ -32,4 +32,4 @@ TriangleMesh CylinderMesh(float bottom_radius, float top_radius, float height, i
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_MESH_SHAPES_H_
+#endif  // M4D_ENCODER_SYNTHETIC_MESH_SHAPES_H_

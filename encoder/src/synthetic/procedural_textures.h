@@ -2,8 +2,8 @@
 // pin stripes, glyph rows, brick mortar, wood grain, speckle noise) so that a Gaussian model
 // of the scene needs many small Gaussians, as real captures do. Each is a pure function of
 // the seed; sizes are powers of two so GL can build mipmaps.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_PROCEDURAL_TEXTURES_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_PROCEDURAL_TEXTURES_H_
+#ifndef M4D_ENCODER_SYNTHETIC_PROCEDURAL_TEXTURES_H_
+#define M4D_ENCODER_SYNTHETIC_PROCEDURAL_TEXTURES_H_
 
 #include <cstdint>
 
@@ -33,4 +33,4 @@ SceneTexture LeavesTexture(uint64_t seed);         // the swaying plant: overlap
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_PROCEDURAL_TEXTURES_H_
+#endif  // M4D_ENCODER_SYNTHETIC_PROCEDURAL_TEXTURES_H_

@@ -1,8 +1,8 @@
 // SceneFrameState: where every object of the synthetic scene is at a frame, whether it is
 // there at all, and the lighting: the articulated figure's pose, the cube's spin, the ball
 // from the emergent frame on, the plant's sway, and the lamp's change and flicker.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_ANIMATION_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_ANIMATION_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_ANIMATION_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_ANIMATION_H_
 
 #include <vector>
 
@@ -29,4 +29,4 @@ glm::vec3 RotatingObjectCentre();
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_ANIMATION_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_ANIMATION_H_

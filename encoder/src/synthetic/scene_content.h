@@ -2,8 +2,8 @@
 // a mesh in its own frame with a texture and a kind of motion. The room and its furniture
 // are static (meshes in world coordinates); the figure's parts, the rotating cube and the
 // emergent ball move or appear (see scene_animation.h).
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_CONTENT_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_CONTENT_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_CONTENT_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_CONTENT_H_
 
 #include <cstdint>
 #include <string>
@@ -46,4 +46,4 @@ const char* ObjectMotionName(ObjectMotion motion);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_CONTENT_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_CONTENT_H_

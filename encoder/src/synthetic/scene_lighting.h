@@ -1,8 +1,8 @@
 // SceneLighting: the synthetic scene's baked lighting (ambient + a directional sun + a point
 // lamp, Lambertian, no shadows) and its evaluation on the CPU. The renderer's fragment
 // shader evaluates the same formula, so initial points get the colours the images show.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_LIGHTING_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_LIGHTING_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_LIGHTING_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_LIGHTING_H_
 
 #include <glm/vec3.hpp>
 
@@ -33,4 +33,4 @@ glm::vec3 ShadeSurface(const SceneLighting& lighting, float emissive, const glm:
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_LIGHTING_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_LIGHTING_H_

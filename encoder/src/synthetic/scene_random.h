@@ -1,8 +1,8 @@
 // Deterministic pseudo-random numbers for the synthetic scene: a counter-based hash, so that
 // every value depends only on (seed, stream, index) and the scene is the same on every
 // platform and standard library (std:: distributions are not).
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RANDOM_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RANDOM_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_RANDOM_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_RANDOM_H_
 
 #include <cstdint>
 
@@ -38,4 +38,4 @@ inline float LatticeValue(uint64_t seed, int64_t x, int64_t y) {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RANDOM_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_RANDOM_H_

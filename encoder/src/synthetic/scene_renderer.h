@@ -2,8 +2,8 @@
 // llvmpipe is enough). Meshes and mipmapped textures are uploaded once; each view is drawn
 // at `supersample` times the output size with multisampling, read back and box-filtered
 // down to 8-bit RGB, so that fine texture detail is smooth enough for a Gaussian model.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RENDERER_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RENDERER_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_RENDERER_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_RENDERER_H_
 
 #include <cstdint>
 #include <memory>
@@ -64,4 +64,4 @@ class SceneRenderer {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_RENDERER_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_RENDERER_H_

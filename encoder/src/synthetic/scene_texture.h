@@ -1,8 +1,8 @@
 // SceneTexture: an 8-bit RGB texture of the synthetic scene, and the bilinear, repeating
 // lookup that matches what GL does with its base level (GL_LINEAR, GL_REPEAT), used to
 // colour the initial points like the rendered surfaces.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_TEXTURE_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_TEXTURE_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_TEXTURE_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_TEXTURE_H_
 
 #include <cstdint>
 #include <functional>
@@ -29,4 +29,4 @@ glm::vec3 SampleTexture(const SceneTexture& texture, float u, float v);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_TEXTURE_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_TEXTURE_H_

@@ -1,8 +1,8 @@
 // Writing the synthetic scene to a directory in the transforms.json layout (README.md here):
 // images/<camera>/<frame>.png (.jpg with CaptureRealism::jpeg_quality) for every view,
 // transforms.json, points3d.ply and scene.json (what happens when, and every option).
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SCENE_WRITER_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SCENE_WRITER_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SCENE_WRITER_H_
+#define M4D_ENCODER_SYNTHETIC_SCENE_WRITER_H_
 
 #include <functional>
 #include <string>
@@ -25,4 +25,4 @@ std::string SyntheticImagePath(const std::string& camera_name, int frame, bool j
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SCENE_WRITER_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SCENE_WRITER_H_

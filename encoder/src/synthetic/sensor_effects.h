@@ -1,8 +1,8 @@
 // The synthetic scene's sensor: per-camera exposure and white balance, and per-view Gaussian
 // noise (CaptureRealism), applied to a rendered view before it is quantised to 8 bits. Every
 // draw is a hash of (seed, camera, frame, sample), so views can be made in any order.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SENSOR_EFFECTS_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SENSOR_EFFECTS_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SENSOR_EFFECTS_H_
+#define M4D_ENCODER_SYNTHETIC_SENSOR_EFFECTS_H_
 
 #include <cstdint>
 #include <vector>
@@ -26,4 +26,4 @@ void ApplySensorEffects(const SyntheticSceneOptions& options, int frame, int cam
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SENSOR_EFFECTS_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SENSOR_EFFECTS_H_

@@ -1,8 +1,8 @@
 // Sampling the synthetic scene's surfaces into the initial point cloud: points spread over
 // the visible objects in proportion to area, coloured like the renderer shades them (the
 // texture's base level under the frame's lighting).
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SURFACE_POINT_SAMPLER_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SURFACE_POINT_SAMPLER_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SURFACE_POINT_SAMPLER_H_
+#define M4D_ENCODER_SYNTHETIC_SURFACE_POINT_SAMPLER_H_
 
 #include <cstdint>
 
@@ -19,4 +19,4 @@ PointCloud SampleSurfacePoints(const SceneContent& content, const SceneFrameStat
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SURFACE_POINT_SAMPLER_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SURFACE_POINT_SAMPLER_H_

@@ -1,8 +1,8 @@
 // The swaying plant of the realistic synthetic scene (CaptureRealism::background_sway): a
 // pot in the back-left corner of the room, and a bush of leaves on a stem that sways on it
 // like a plant in a draught, so that a little of the background moves a few centimetres.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SWAYING_PLANT_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SWAYING_PLANT_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SWAYING_PLANT_H_
+#define M4D_ENCODER_SYNTHETIC_SWAYING_PLANT_H_
 
 #include <glm/mat4x4.hpp>
 
@@ -22,4 +22,4 @@ glm::mat4 PlantFoliagePose(float sway, int frame);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SWAYING_PLANT_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SWAYING_PLANT_H_

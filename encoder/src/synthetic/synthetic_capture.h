@@ -3,8 +3,8 @@
 // WriteSyntheticScene decode to), with the rig's calibration (mirrored when left-handed),
 // camera 0 held out and the initial point cloud. With lens distortion the views are served
 // undistorted to pinhole cameras, as the transforms.json loader serves the files.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SYNTHETIC_CAPTURE_H_
+#define M4D_ENCODER_SYNTHETIC_SYNTHETIC_CAPTURE_H_
 
 #include <cstddef>
 
@@ -25,4 +25,4 @@ Status GenerateSyntheticCapture(const SyntheticSceneOptions& options, Capture* c
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_CAPTURE_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SYNTHETIC_CAPTURE_H_

@@ -1,8 +1,8 @@
 // Synthetic codec content (random Gaussian sets, smooth sparse motion grids, small MLPs) for
 // tests, benchmarks, fuzz seeds and the stream demo. Deterministic for a seed on every
 // platform: it uses its own generator, not the implementation-defined std distributions.
-#ifndef M4D_ENCODER_STREAM_SYNTHETIC_CONTENT_H_
-#define M4D_ENCODER_STREAM_SYNTHETIC_CONTENT_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SYNTHETIC_CONTENT_H_
+#define M4D_ENCODER_SYNTHETIC_SYNTHETIC_CONTENT_H_
 
 #include <cstdint>
 
@@ -45,4 +45,4 @@ MlpWeights SyntheticMlp(int feature_count, const MlpConfig& config, uint64_t see
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_STREAM_SYNTHETIC_CONTENT_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SYNTHETIC_CONTENT_H_

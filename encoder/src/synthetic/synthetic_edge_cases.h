@@ -1,6 +1,6 @@
 // Synthetic content at the edges of the decoding process, for conformance streams.
-#ifndef M4D_ENCODER_STREAM_SYNTHETIC_EDGE_CASES_H_
-#define M4D_ENCODER_STREAM_SYNTHETIC_EDGE_CASES_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SYNTHETIC_EDGE_CASES_H_
+#define M4D_ENCODER_SYNTHETIC_SYNTHETIC_EDGE_CASES_H_
 
 #include <cstdint>
 
@@ -33,4 +33,4 @@ FloatMotionGrid EdgeCaseMotionGrid(uint64_t seed, const GaussianSet& dynamic_set
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_STREAM_SYNTHETIC_EDGE_CASES_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SYNTHETIC_EDGE_CASES_H_

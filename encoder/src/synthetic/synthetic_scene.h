@@ -3,8 +3,8 @@
 // appears mid-sequence and a lamp that may change colour, seen by a front-facing rig (see
 // README.md in this directory), optionally with the flaws of a real capture (CaptureRealism).
 // Rendering uses a headless OpenGL ES context on the thread that created the scene.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_H_
+#define M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_H_
 
 #include <cstdint>
 #include <memory>
@@ -63,4 +63,4 @@ class SyntheticScene {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_H_

@@ -1,7 +1,7 @@
 // SyntheticSceneOptions: what the built-in multi-view dynamic scene is made of (rig, image
 // size, length, when things happen, seeds, the flaws of a real capture), and their validation.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_OPTIONS_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_OPTIONS_H_
+#ifndef M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_OPTIONS_H_
+#define M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_OPTIONS_H_
 
 #include <cstdint>
 
@@ -82,4 +82,4 @@ int EmergentFrame(const SyntheticSceneOptions& options);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_SYNTHETIC_SCENE_OPTIONS_H_
+#endif  // M4D_ENCODER_SYNTHETIC_SYNTHETIC_SCENE_OPTIONS_H_

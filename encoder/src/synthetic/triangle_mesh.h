@@ -1,7 +1,7 @@
 // TriangleMesh: indexed triangles with a normal and a texture coordinate per vertex, the
 // geometry the synthetic scene renders and samples its initial points from.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_TRIANGLE_MESH_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_TRIANGLE_MESH_H_
+#ifndef M4D_ENCODER_SYNTHETIC_TRIANGLE_MESH_H_
+#define M4D_ENCODER_SYNTHETIC_TRIANGLE_MESH_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -32,4 +32,4 @@ void AppendMesh(const TriangleMesh& part, const glm::mat4& transform, TriangleMe
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_TRIANGLE_MESH_H_
+#endif  // M4D_ENCODER_SYNTHETIC_TRIANGLE_MESH_H_

@@ -1,6 +1,6 @@
 // Value noise: smooth, tileable pseudo-random patterns for the procedural textures.
-#ifndef M4D_ENCODER_SYNTHETIC_SCENE_VALUE_NOISE_H_
-#define M4D_ENCODER_SYNTHETIC_SCENE_VALUE_NOISE_H_
+#ifndef M4D_ENCODER_SYNTHETIC_VALUE_NOISE_H_
+#define M4D_ENCODER_SYNTHETIC_VALUE_NOISE_H_
 
 #include <cstdint>
 
@@ -17,4 +17,4 @@ float FractalNoise(uint64_t seed, float x, float y, int period_x, int period_y, 
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_SYNTHETIC_SCENE_VALUE_NOISE_H_
+#endif  // M4D_ENCODER_SYNTHETIC_VALUE_NOISE_H_

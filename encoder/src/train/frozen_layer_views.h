@@ -6,8 +6,8 @@
 //   projection (RenderForward with first_layer, splat_renderer.h) is the same render;
 // - a focused render (tile_focus.h) leaves out the tiles the trained layers do not reach,
 //   which hold exactly this layer's render alone, so the loss can read them from here.
-#ifndef M4D_ENCODER_RENDER_FROZEN_LAYER_VIEWS_H_
-#define M4D_ENCODER_RENDER_FROZEN_LAYER_VIEWS_H_
+#ifndef M4D_ENCODER_TRAIN_FROZEN_LAYER_VIEWS_H_
+#define M4D_ENCODER_TRAIN_FROZEN_LAYER_VIEWS_H_
 
 #include <vector>
 
@@ -45,4 +45,4 @@ class FrozenLayerViews {
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_RENDER_FROZEN_LAYER_VIEWS_H_
+#endif  // M4D_ENCODER_TRAIN_FROZEN_LAYER_VIEWS_H_

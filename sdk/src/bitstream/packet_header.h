@@ -1,6 +1,6 @@
 // Packet header (bitstream-spec section 3): 24 bytes in front of every payload.
-#ifndef M4D_BITSTREAM_PACKET_HEADER_H_
-#define M4D_BITSTREAM_PACKET_HEADER_H_
+#ifndef M4D_SDK_BITSTREAM_PACKET_HEADER_H_
+#define M4D_SDK_BITSTREAM_PACKET_HEADER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -33,4 +33,4 @@ void AppendPacket(uint8_t type, uint32_t frame_index, bool end_of_frame, const u
 
 }  // namespace m4d
 
-#endif  // M4D_BITSTREAM_PACKET_HEADER_H_
+#endif  // M4D_SDK_BITSTREAM_PACKET_HEADER_H_

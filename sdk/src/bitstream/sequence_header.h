@@ -1,7 +1,7 @@
 // SEQUENCE_HEADER payload (bitstream-spec 4.1): version, SH degree, frame rate, and the
 // configuration of the motion grid and the shared MLP. It opens every GOP.
-#ifndef M4D_BITSTREAM_SEQUENCE_HEADER_H_
-#define M4D_BITSTREAM_SEQUENCE_HEADER_H_
+#ifndef M4D_SDK_BITSTREAM_SEQUENCE_HEADER_H_
+#define M4D_SDK_BITSTREAM_SEQUENCE_HEADER_H_
 
 #include <cstdint>
 
@@ -72,4 +72,4 @@ Status ValidateSequenceHeader(const SequenceHeader& header, uint32_t max_grid_va
 
 }  // namespace m4d
 
-#endif  // M4D_BITSTREAM_SEQUENCE_HEADER_H_
+#endif  // M4D_SDK_BITSTREAM_SEQUENCE_HEADER_H_

@@ -1,7 +1,7 @@
 // ByteReader: bounds-checked little-endian reads from a byte span. Every read reports
 // failure instead of reading past the end, so parsers can never overrun a payload.
-#ifndef M4D_COMMON_BYTE_READER_H_
-#define M4D_COMMON_BYTE_READER_H_
+#ifndef M4D_SDK_COMMON_BYTE_READER_H_
+#define M4D_SDK_COMMON_BYTE_READER_H_
 
 #include <cmath>
 #include <cstddef>
@@ -84,4 +84,4 @@ class ByteReader {
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_BYTE_READER_H_
+#endif  // M4D_SDK_COMMON_BYTE_READER_H_

@@ -1,6 +1,6 @@
 // ByteWriter: little-endian serialisation into a growing buffer, the mirror of ByteReader.
-#ifndef M4D_COMMON_BYTE_WRITER_H_
-#define M4D_COMMON_BYTE_WRITER_H_
+#ifndef M4D_SDK_COMMON_BYTE_WRITER_H_
+#define M4D_SDK_COMMON_BYTE_WRITER_H_
 
 #include <cstdint>
 #include <cstring>
@@ -47,4 +47,4 @@ class ByteWriter {
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_BYTE_WRITER_H_
+#endif  // M4D_SDK_COMMON_BYTE_WRITER_H_

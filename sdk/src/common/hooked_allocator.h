@@ -2,8 +2,8 @@
 // caller's allocation hooks (M4dSettings.allocator). Without hooks it uses malloc.
 // Failure throws std::bad_alloc, which the C API turns into M4D_ERR_NOMEM. The hooks are held
 // by value: a frame's buffers outlive the context whose settings named them.
-#ifndef M4D_COMMON_HOOKED_ALLOCATOR_H_
-#define M4D_COMMON_HOOKED_ALLOCATOR_H_
+#ifndef M4D_SDK_COMMON_HOOKED_ALLOCATOR_H_
+#define M4D_SDK_COMMON_HOOKED_ALLOCATOR_H_
 
 #include <cstddef>
 #include <cstdlib>
@@ -62,4 +62,4 @@ using Buffer = std::vector<T, HookedAllocator<T>>;
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_HOOKED_ALLOCATOR_H_
+#endif  // M4D_SDK_COMMON_HOOKED_ALLOCATOR_H_

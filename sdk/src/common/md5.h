@@ -1,6 +1,6 @@
 // MD5 (RFC 1321), used for the normative frame hash (bitstream-spec section 7).
-#ifndef M4D_COMMON_MD5_H_
-#define M4D_COMMON_MD5_H_
+#ifndef M4D_SDK_COMMON_MD5_H_
+#define M4D_SDK_COMMON_MD5_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -26,4 +26,4 @@ std::string HexDigest(const uint8_t digest[16]);
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_MD5_H_
+#endif  // M4D_SDK_COMMON_MD5_H_

@@ -1,6 +1,6 @@
 // Constants and limits of the bitstream specification (bitstream-spec/README.md, section 8).
-#ifndef M4D_COMMON_SPEC_LIMITS_H_
-#define M4D_COMMON_SPEC_LIMITS_H_
+#ifndef M4D_SDK_COMMON_SPEC_LIMITS_H_
+#define M4D_SDK_COMMON_SPEC_LIMITS_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -49,4 +49,4 @@ constexpr size_t kPacketHeaderSize = 24;
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_SPEC_LIMITS_H_
+#endif  // M4D_SDK_COMMON_SPEC_LIMITS_H_

@@ -1,7 +1,7 @@
 // Status: an error code from the public header plus a message, returned by every
 // internal function that can fail on bad input. No exceptions cross this boundary.
-#ifndef M4D_COMMON_STATUS_H_
-#define M4D_COMMON_STATUS_H_
+#ifndef M4D_SDK_COMMON_STATUS_H_
+#define M4D_SDK_COMMON_STATUS_H_
 
 #include <string>
 #include <utility>
@@ -38,4 +38,4 @@ inline Status LimitError(std::string message) { return Status(M4D_ERR_LIMIT, std
     if (!m4d_status_.ok()) return m4d_status_; \
   } while (0)
 
-#endif  // M4D_COMMON_STATUS_H_
+#endif  // M4D_SDK_COMMON_STATUS_H_

@@ -2,8 +2,8 @@
 // Gaussians). The calling thread works too, so a pool of size 1 runs everything inline and
 // never creates a thread. Tasks are claimed one at a time from a shared counter, so a task
 // should be a sizeable piece of work (a tile, a few hundred Gaussians), not a pixel.
-#ifndef M4D_COMMON_THREAD_POOL_H_
-#define M4D_COMMON_THREAD_POOL_H_
+#ifndef M4D_SDK_COMMON_THREAD_POOL_H_
+#define M4D_SDK_COMMON_THREAD_POOL_H_
 
 #include <atomic>
 #include <condition_variable>
@@ -55,4 +55,4 @@ void ParallelForChunks(ThreadPool* pool, size_t n, size_t chunk,
 
 }  // namespace m4d
 
-#endif  // M4D_COMMON_THREAD_POOL_H_
+#endif  // M4D_SDK_COMMON_THREAD_POOL_H_

@@ -1,8 +1,8 @@
 // Merging of a frame's compensated Gaussians into the dynamic set (bitstream-spec 6.4).
 // Added Gaussians fill the removed slots first, so the cost is proportional to the number of
 // removed and added Gaussians, not to the size of the set.
-#ifndef M4D_DECODE_COMPENSATION_MERGE_H_
-#define M4D_DECODE_COMPENSATION_MERGE_H_
+#ifndef M4D_SDK_DECODE_COMPENSATION_MERGE_H_
+#define M4D_SDK_DECODE_COMPENSATION_MERGE_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -17,4 +17,4 @@ void MergeCompensation(const int32_t* removed, const GaussianSet& added, Gaussia
 
 }  // namespace m4d
 
-#endif  // M4D_DECODE_COMPENSATION_MERGE_H_
+#endif  // M4D_SDK_DECODE_COMPENSATION_MERGE_H_

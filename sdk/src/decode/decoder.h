@@ -1,8 +1,8 @@
 // Decoder: the decoding process of bitstream-spec section 6 as a packet-driven state machine.
 // The C API (api/m4d_api.cc) wraps it; the encoder drives one directly to reconstruct exactly
 // what every decoder will output (closed loop).
-#ifndef M4D_DECODE_DECODER_H_
-#define M4D_DECODE_DECODER_H_
+#ifndef M4D_SDK_DECODE_DECODER_H_
+#define M4D_SDK_DECODE_DECODER_H_
 
 #include <cstdint>
 #include <functional>
@@ -148,4 +148,4 @@ class Decoder {
 
 }  // namespace m4d
 
-#endif  // M4D_DECODE_DECODER_H_
+#endif  // M4D_SDK_DECODE_DECODER_H_

@@ -1,6 +1,6 @@
 // The normative frame hash (bitstream-spec section 7): MD5 over the output layers.
-#ifndef M4D_DECODE_FRAME_HASH_H_
-#define M4D_DECODE_FRAME_HASH_H_
+#ifndef M4D_SDK_DECODE_FRAME_HASH_H_
+#define M4D_SDK_DECODE_FRAME_HASH_H_
 
 #include <cstdint>
 #include <string>
@@ -21,4 +21,4 @@ std::string FrameHashHex(const DecodedFrame& frame);
 
 }  // namespace m4d
 
-#endif  // M4D_DECODE_FRAME_HASH_H_
+#endif  // M4D_SDK_DECODE_FRAME_HASH_H_

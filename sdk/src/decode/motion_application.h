@@ -1,8 +1,8 @@
 // Motion application (bitstream-spec 6.3; paper section 3.3): trilinear lookup of the motion
 // grid at each dynamic Gaussian, the shared MLP, then translation and quaternion composition.
 // Normative float code: built with -ffp-contract=off; vectorised across Gaussians only.
-#ifndef M4D_DECODE_MOTION_APPLICATION_H_
-#define M4D_DECODE_MOTION_APPLICATION_H_
+#ifndef M4D_SDK_DECODE_MOTION_APPLICATION_H_
+#define M4D_SDK_DECODE_MOTION_APPLICATION_H_
 
 #include "sdk/src/common/thread_pool.h"
 #include "sdk/src/layers/gaussian_set.h"
@@ -30,4 +30,4 @@ void ApplyMotionWith(MotionKernelKind kind, const GridConfig& config, const Moti
 
 }  // namespace m4d
 
-#endif  // M4D_DECODE_MOTION_APPLICATION_H_
+#endif  // M4D_SDK_DECODE_MOTION_APPLICATION_H_

@@ -1,7 +1,7 @@
 // Entry points of the motion kernel builds (see motion_kernel.cc); callers use ApplyMotion
 // (motion_application.h), which picks the fastest one the CPU runs.
-#ifndef M4D_DECODE_MOTION_KERNEL_H_
-#define M4D_DECODE_MOTION_KERNEL_H_
+#ifndef M4D_SDK_DECODE_MOTION_KERNEL_H_
+#define M4D_SDK_DECODE_MOTION_KERNEL_H_
 
 #include "sdk/src/layers/gaussian_set.h"
 #include "sdk/src/layers/mlp_weights.h"
@@ -23,4 +23,4 @@ void ApplyMotionAvx512(const GridConfig& config, const MotionGrid& grid, const M
 
 }  // namespace m4d
 
-#endif  // M4D_DECODE_MOTION_KERNEL_H_
+#endif  // M4D_SDK_DECODE_MOTION_KERNEL_H_

@@ -1,8 +1,8 @@
 // Decoding of adaptive binary range coding (bitstream-spec 5.7, version 0.8): LZMA's range
 // coder, bits coded with 12-bit probabilities that adapt after every bit, or with probability
 // one half (bypass bits).
-#ifndef M4D_ENTROPY_BINARY_RANGE_DECODER_H_
-#define M4D_ENTROPY_BINARY_RANGE_DECODER_H_
+#ifndef M4D_SDK_ENTROPY_BINARY_RANGE_DECODER_H_
+#define M4D_SDK_ENTROPY_BINARY_RANGE_DECODER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -84,4 +84,4 @@ class BinaryRangeDecoder {
 
 }  // namespace m4d
 
-#endif  // M4D_ENTROPY_BINARY_RANGE_DECODER_H_
+#endif  // M4D_SDK_ENTROPY_BINARY_RANGE_DECODER_H_

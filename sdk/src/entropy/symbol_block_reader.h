@@ -1,7 +1,7 @@
 // Decoding of symbol_block(count) (bitstream-spec 5.1, 5.2): a transmitted frequency table
 // followed by an rANS payload.
-#ifndef M4D_ENTROPY_SYMBOL_BLOCK_READER_H_
-#define M4D_ENTROPY_SYMBOL_BLOCK_READER_H_
+#ifndef M4D_SDK_ENTROPY_SYMBOL_BLOCK_READER_H_
+#define M4D_SDK_ENTROPY_SYMBOL_BLOCK_READER_H_
 
 #include <cstdint>
 
@@ -30,4 +30,4 @@ Status ReadSymbolBlock(ByteReader* reader, RansLayout layout, uint32_t count, in
 
 }  // namespace m4d
 
-#endif  // M4D_ENTROPY_SYMBOL_BLOCK_READER_H_
+#endif  // M4D_SDK_ENTROPY_SYMBOL_BLOCK_READER_H_

@@ -2,8 +2,8 @@
 // objects without a window or a GPU (Mesa's llvmpipe works). The display comes from Mesa's
 // surfaceless platform when the EGL library offers it, else from EGL_DEFAULT_DISPLAY with a
 // 1x1 pbuffer to be current on. Owns its context and its GL function table; no global state.
-#ifndef M4D_GL_EGL_CONTEXT_H_
-#define M4D_GL_EGL_CONTEXT_H_
+#ifndef M4D_SDK_GL_EGL_CONTEXT_H_
+#define M4D_SDK_GL_EGL_CONTEXT_H_
 
 #include <memory>
 #include <string>
@@ -46,4 +46,4 @@ class EglContext : public GlContext {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_EGL_CONTEXT_H_
+#endif  // M4D_SDK_GL_EGL_CONTEXT_H_

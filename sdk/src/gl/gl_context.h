@@ -1,7 +1,7 @@
 // GlContext: a headless OpenGL ES 3.0 (or ES 3.0 compatible) context the SDK owns, whatever
 // made it (EGL, or OSMesa as a fallback): make it current, call GL through its function table.
-#ifndef M4D_GL_GL_CONTEXT_H_
-#define M4D_GL_GL_CONTEXT_H_
+#ifndef M4D_SDK_GL_GL_CONTEXT_H_
+#define M4D_SDK_GL_GL_CONTEXT_H_
 
 #include <memory>
 #include <string>
@@ -28,4 +28,4 @@ Status CreateHeadlessGlContext(std::unique_ptr<GlContext>* context);
 
 }  // namespace m4d
 
-#endif  // M4D_GL_GL_CONTEXT_H_
+#endif  // M4D_SDK_GL_GL_CONTEXT_H_

@@ -3,8 +3,8 @@
 // GL library: an EGL context fills the table through eglGetProcAddress and a software
 // fallback (OSMesa) can fill the same table through OSMesaGetProcAddress, so GL code is
 // written once against the table whatever made the context.
-#ifndef M4D_GL_GL_FUNCTIONS_H_
-#define M4D_GL_GL_FUNCTIONS_H_
+#ifndef M4D_SDK_GL_GL_FUNCTIONS_H_
+#define M4D_SDK_GL_GL_FUNCTIONS_H_
 
 // Types, enums and PFN typedefs only: calling a prototype would need libGLESv2.
 #ifndef GL_GLES_PROTOTYPES
@@ -102,4 +102,4 @@ Status LoadGlFunctions(GlProcLoader load, GlFunctions* gl);
 
 }  // namespace m4d
 
-#endif  // M4D_GL_GL_FUNCTIONS_H_
+#endif  // M4D_SDK_GL_GL_FUNCTIONS_H_

@@ -2,8 +2,8 @@
 // uploaded layers, the CPU stage (splat_instances.h) and the GL stage (splat_draw_program.h),
 // and either its own headless context and framebuffer or nothing of the caller's but the GL
 // objects it creates in the caller's current context.
-#ifndef M4D_GL_GL_SPLAT_RENDERER_H_
-#define M4D_GL_GL_SPLAT_RENDERER_H_
+#ifndef M4D_SDK_GL_GL_SPLAT_RENDERER_H_
+#define M4D_SDK_GL_GL_SPLAT_RENDERER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -85,4 +85,4 @@ class GlSplatRenderer {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_GL_SPLAT_RENDERER_H_
+#endif  // M4D_SDK_GL_GL_SPLAT_RENDERER_H_

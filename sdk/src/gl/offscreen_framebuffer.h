@@ -3,8 +3,8 @@
 // read-back of its pixels (multisampling resolved, top row first). Half floats keep many
 // blended layers from accumulating 8-bit rounding; they need EXT_color_buffer_half_float or
 // EXT_color_buffer_float.
-#ifndef M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
-#define M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
+#ifndef M4D_SDK_GL_OFFSCREEN_FRAMEBUFFER_H_
+#define M4D_SDK_GL_OFFSCREEN_FRAMEBUFFER_H_
 
 #include <cstdint>
 #include <memory>
@@ -63,4 +63,4 @@ class OffscreenFramebuffer {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_OFFSCREEN_FRAMEBUFFER_H_
+#endif  // M4D_SDK_GL_OFFSCREEN_FRAMEBUFFER_H_

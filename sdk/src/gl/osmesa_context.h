@@ -3,8 +3,8 @@
 // needs it installed. It makes a desktop OpenGL 3.3 core context; the renderer's shaders are
 // GLSL ES 3.00, which Mesa's desktop contexts accept (ARB_ES3_compatibility). Rendering goes
 // to framebuffer objects; OSMesa's own 1x1 buffer only makes the context current.
-#ifndef M4D_GL_OSMESA_CONTEXT_H_
-#define M4D_GL_OSMESA_CONTEXT_H_
+#ifndef M4D_SDK_GL_OSMESA_CONTEXT_H_
+#define M4D_SDK_GL_OSMESA_CONTEXT_H_
 
 #include <memory>
 #include <string>
@@ -42,4 +42,4 @@ class OsmesaContext : public GlContext {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_OSMESA_CONTEXT_H_
+#endif  // M4D_SDK_GL_OSMESA_CONTEXT_H_

@@ -1,7 +1,7 @@
 // Compiling and linking a GLSL ES vertex + fragment shader pair into a program object, with
 // the compiler's log in the error.
-#ifndef M4D_GL_SHADER_PROGRAM_H_
-#define M4D_GL_SHADER_PROGRAM_H_
+#ifndef M4D_SDK_GL_SHADER_PROGRAM_H_
+#define M4D_SDK_GL_SHADER_PROGRAM_H_
 
 #include "sdk/src/common/status.h"
 #include "sdk/src/gl/gl_functions.h"
@@ -15,4 +15,4 @@ Status CompileShaderProgram(const GlFunctions& gl, const char* vertex_source,
 
 }  // namespace m4d
 
-#endif  // M4D_GL_SHADER_PROGRAM_H_
+#endif  // M4D_SDK_GL_SHADER_PROGRAM_H_

@@ -8,8 +8,8 @@
 // (what it would skip weighs less than that; chunked early termination through the depth test was
 // tried and saved nothing on llvmpipe, where most overdraw is the many layers of one surface rather
 // than hidden surfaces).
-#ifndef M4D_GL_SPLAT_DRAW_PROGRAM_H_
-#define M4D_GL_SPLAT_DRAW_PROGRAM_H_
+#ifndef M4D_SDK_GL_SPLAT_DRAW_PROGRAM_H_
+#define M4D_SDK_GL_SPLAT_DRAW_PROGRAM_H_
 
 #include <cstddef>
 #include <memory>
@@ -53,4 +53,4 @@ class SplatDrawProgram {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_SPLAT_DRAW_PROGRAM_H_
+#endif  // M4D_SDK_GL_SPLAT_DRAW_PROGRAM_H_

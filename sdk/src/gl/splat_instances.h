@@ -3,8 +3,8 @@
 // culling, opacity and SH colour per view), the visible splats are sorted front to back by
 // camera-space depth (radix sort on the float bits; ties keep the concatenation order, like
 // the reference's stable sort), and each becomes one instance record for the vertex shader.
-#ifndef M4D_GL_SPLAT_INSTANCES_H_
-#define M4D_GL_SPLAT_INSTANCES_H_
+#ifndef M4D_SDK_GL_SPLAT_INSTANCES_H_
+#define M4D_SDK_GL_SPLAT_INSTANCES_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -56,4 +56,4 @@ class SplatInstanceBuilder {
 
 }  // namespace m4d
 
-#endif  // M4D_GL_SPLAT_INSTANCES_H_
+#endif  // M4D_SDK_GL_SPLAT_INSTANCES_H_

@@ -2,8 +2,8 @@
 // set coded with adaptive binary range coding, each value conditioned on its neighbour in
 // coding order. The traversal and the context model are shared by the decoder and the
 // encoder, which differ only in their coder.
-#ifndef M4D_LAYERS_ADAPTIVE_ATTRIBUTES_H_
-#define M4D_LAYERS_ADAPTIVE_ATTRIBUTES_H_
+#ifndef M4D_SDK_LAYERS_ADAPTIVE_ATTRIBUTES_H_
+#define M4D_SDK_LAYERS_ADAPTIVE_ATTRIBUTES_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -105,4 +105,4 @@ Status ReadAdaptiveAttributes(ByteReader* reader, const AdaptiveField* fields, i
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_ADAPTIVE_ATTRIBUTES_H_
+#endif  // M4D_SDK_LAYERS_ADAPTIVE_ATTRIBUTES_H_

@@ -2,8 +2,8 @@
 // 4.7, version 0.3): one integer per Gaussian and colour channel, added to the SH DC
 // coefficient after dequantization (6.7). Shading of moving parts changes as they turn; the
 // colours a keyframe fixed for its GOP cannot follow it.
-#ifndef M4D_LAYERS_APPEARANCE_UPDATE_H_
-#define M4D_LAYERS_APPEARANCE_UPDATE_H_
+#ifndef M4D_SDK_LAYERS_APPEARANCE_UPDATE_H_
+#define M4D_SDK_LAYERS_APPEARANCE_UPDATE_H_
 
 #include <cstdint>
 
@@ -27,4 +27,4 @@ Status ReadAppearanceUpdate(ByteReader* reader, RansLayout layout, uint32_t coun
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_APPEARANCE_UPDATE_H_
+#endif  // M4D_SDK_LAYERS_APPEARANCE_UPDATE_H_

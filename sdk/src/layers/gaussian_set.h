@@ -1,8 +1,8 @@
 // GaussianSet: the decoded state of one layer, attribute by attribute (structure of arrays).
 // Values are stored before activation, as coded: log scales, opacity logits, unnormalised
 // quaternions (w, x, y, z) and SH coefficients ordered [gaussian][k][channel].
-#ifndef M4D_LAYERS_GAUSSIAN_SET_H_
-#define M4D_LAYERS_GAUSSIAN_SET_H_
+#ifndef M4D_SDK_LAYERS_GAUSSIAN_SET_H_
+#define M4D_SDK_LAYERS_GAUSSIAN_SET_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -44,4 +44,4 @@ struct GaussianSet {
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_GAUSSIAN_SET_H_
+#endif  // M4D_SDK_LAYERS_GAUSSIAN_SET_H_

@@ -1,7 +1,7 @@
 // Decoding of gaussian_set() (bitstream-spec 5.4, 5.5): quantization parameters, then a Draco
 // point cloud of integer attributes, dequantized with the spec's formula.
-#ifndef M4D_LAYERS_GAUSSIAN_SET_READER_H_
-#define M4D_LAYERS_GAUSSIAN_SET_READER_H_
+#ifndef M4D_SDK_LAYERS_GAUSSIAN_SET_READER_H_
+#define M4D_SDK_LAYERS_GAUSSIAN_SET_READER_H_
 
 #include <cstdint>
 
@@ -47,4 +47,4 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSynta
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_GAUSSIAN_SET_READER_H_
+#endif  // M4D_SDK_LAYERS_GAUSSIAN_SET_READER_H_

@@ -1,7 +1,7 @@
 // What gaussian_set() holds in a given bitstream version (bitstream-spec 5.4, 10): the readers
 // and writers of every version share one implementation, told the version's syntax.
-#ifndef M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
-#define M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
+#ifndef M4D_SDK_LAYERS_GAUSSIAN_SET_SYNTAX_H_
+#define M4D_SDK_LAYERS_GAUSSIAN_SET_SYNTAX_H_
 
 #include "sdk/src/entropy/symbol_block_reader.h"
 #include "sdk/src/layers/rotation_coding.h"
@@ -19,4 +19,4 @@ struct GaussianSetSyntax {
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_GAUSSIAN_SET_SYNTAX_H_
+#endif  // M4D_SDK_LAYERS_GAUSSIAN_SET_SYNTAX_H_

@@ -4,8 +4,8 @@
 // view of one, with the SH degree as an int. All hold the values as coded (log scales,
 // opacity logits, unnormalised quaternions w, x, y, z, SH [gaussian][k][r, g, b]). The
 // encoder's trainable GaussianModel converts to and from a GaussianSet in gaussian_model.h.
-#ifndef M4D_LAYERS_GAUSSIAN_VIEWS_H_
-#define M4D_LAYERS_GAUSSIAN_VIEWS_H_
+#ifndef M4D_SDK_LAYERS_GAUSSIAN_VIEWS_H_
+#define M4D_SDK_LAYERS_GAUSSIAN_VIEWS_H_
 
 #include <cstddef>
 
@@ -60,4 +60,4 @@ Status AppendLayer(const M4dGaussians& layer, GaussianSet* out);
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_GAUSSIAN_VIEWS_H_
+#endif  // M4D_SDK_LAYERS_GAUSSIAN_VIEWS_H_

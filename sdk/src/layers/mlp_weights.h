@@ -1,6 +1,6 @@
 // MlpWeights: the shared MLP of a GOP (bitstream-spec 4.3), and its reader.
-#ifndef M4D_LAYERS_MLP_WEIGHTS_H_
-#define M4D_LAYERS_MLP_WEIGHTS_H_
+#ifndef M4D_SDK_LAYERS_MLP_WEIGHTS_H_
+#define M4D_SDK_LAYERS_MLP_WEIGHTS_H_
 
 #include <vector>
 
@@ -31,4 +31,4 @@ Status ReadMlpWeights(ByteReader* reader, RansLayout layout, int feature_count,
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_MLP_WEIGHTS_H_
+#endif  // M4D_SDK_LAYERS_MLP_WEIGHTS_H_

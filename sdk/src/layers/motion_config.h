@@ -1,7 +1,7 @@
 // Configuration of the motion grid and the shared MLP, carried by the sequence header
 // (bitstream-spec 4.1).
-#ifndef M4D_LAYERS_MOTION_CONFIG_H_
-#define M4D_LAYERS_MOTION_CONFIG_H_
+#ifndef M4D_SDK_LAYERS_MOTION_CONFIG_H_
+#define M4D_SDK_LAYERS_MOTION_CONFIG_H_
 
 #include <cstdint>
 
@@ -37,4 +37,4 @@ struct MlpConfig {
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_MOTION_CONFIG_H_
+#endif  // M4D_SDK_LAYERS_MOTION_CONFIG_H_

@@ -1,7 +1,7 @@
 // MotionGrid: the decoded multi-resolution motion grid of one frame (bitstream-spec 4.4),
 // and its reader. Values stay quantized (int16); the step is applied after interpolation.
-#ifndef M4D_LAYERS_MOTION_GRID_H_
-#define M4D_LAYERS_MOTION_GRID_H_
+#ifndef M4D_SDK_LAYERS_MOTION_GRID_H_
+#define M4D_SDK_LAYERS_MOTION_GRID_H_
 
 #include <cstdint>
 
@@ -36,4 +36,4 @@ Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& c
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_MOTION_GRID_H_
+#endif  // M4D_SDK_LAYERS_MOTION_GRID_H_

@@ -4,8 +4,8 @@
 // difference to the previous point in Morton order on its own, 21 bits per Gaussian on the
 // default scene's keyframe at 12 bits a coordinate; one table of child masks per level takes
 // 17.7 (Panoptic basketball: 18.4 against 14.7).
-#ifndef M4D_LAYERS_OCTREE_POSITIONS_H_
-#define M4D_LAYERS_OCTREE_POSITIONS_H_
+#ifndef M4D_SDK_LAYERS_OCTREE_POSITIONS_H_
+#define M4D_SDK_LAYERS_OCTREE_POSITIONS_H_
 
 #include <cstdint>
 
@@ -24,4 +24,4 @@ Status ReadOctreePositions(ByteReader* reader, RansLayout layout, uint32_t count
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_OCTREE_POSITIONS_H_
+#endif  // M4D_SDK_LAYERS_OCTREE_POSITIONS_H_

@@ -1,8 +1,8 @@
 // How gaussian_set() codes rotations (bitstream-spec 5.4): four quantized components, or, from
 // version 0.5, the three smallest components of the unit quaternion with its largest made
 // positive, plus that component's index; the largest is recovered from the unit norm.
-#ifndef M4D_LAYERS_ROTATION_CODING_H_
-#define M4D_LAYERS_ROTATION_CODING_H_
+#ifndef M4D_SDK_LAYERS_ROTATION_CODING_H_
+#define M4D_SDK_LAYERS_ROTATION_CODING_H_
 
 namespace m4d {
 
@@ -18,4 +18,4 @@ void ComposeSmallestThree(const float* abc, int index, float* q);
 
 }  // namespace m4d
 
-#endif  // M4D_LAYERS_ROTATION_CODING_H_
+#endif  // M4D_SDK_LAYERS_ROTATION_CODING_H_

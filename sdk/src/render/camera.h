@@ -5,8 +5,8 @@
 // v = fy Y / Z + cy; the image spans [0, width] x [0, height] in (u, v), and pixel (i, j) (column
 // i, row j, row 0 at the top) has its centre at (i + 0.5, j + 0.5). With cx = width / 2 this is
 // the pixel grid of the reference 3DGS rasterizer (whose pixel i sits at ndc2Pix = i).
-#ifndef M4D_RENDER_CAMERA_H_
-#define M4D_RENDER_CAMERA_H_
+#ifndef M4D_SDK_RENDER_CAMERA_H_
+#define M4D_SDK_RENDER_CAMERA_H_
 
 #include "sdk/src/common/status.h"
 
@@ -38,4 +38,4 @@ void CameraCentre(const Camera& camera, float centre[3]);
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_CAMERA_H_
+#endif  // M4D_SDK_RENDER_CAMERA_H_

@@ -1,8 +1,8 @@
 // Lanes: eight floats processed together (eight pixels of a tile row), as GCC/clang generic
 // vectors. Each lane performs exactly the scalar IEEE operation sequence, so a vectorised
 // loop gives the same bits as a scalar one when floating-point contraction is off.
-#ifndef M4D_RENDER_LANES_H_
-#define M4D_RENDER_LANES_H_
+#ifndef M4D_SDK_RENDER_LANES_H_
+#define M4D_SDK_RENDER_LANES_H_
 
 #include <cstdint>
 #include <cstring>
@@ -50,4 +50,4 @@ inline float LaneSum(const Lanes& v) {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_LANES_H_
+#endif  // M4D_SDK_RENDER_LANES_H_

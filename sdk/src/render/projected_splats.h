@@ -1,7 +1,7 @@
 // ProjectedSplats: per Gaussian (global index), what preprocessing computes for the
 // rasterizer, as structure of arrays. Culled Gaussians have radius 0 and zero fields.
-#ifndef M4D_RENDER_PROJECTED_SPLATS_H_
-#define M4D_RENDER_PROJECTED_SPLATS_H_
+#ifndef M4D_SDK_RENDER_PROJECTED_SPLATS_H_
+#define M4D_SDK_RENDER_PROJECTED_SPLATS_H_
 
 #include <algorithm>
 #include <cstddef>
@@ -59,4 +59,4 @@ struct ProjectedSplats {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_PROJECTED_SPLATS_H_
+#endif  // M4D_SDK_RENDER_PROJECTED_SPLATS_H_

@@ -6,8 +6,8 @@
 // [-cx / fx, (width - cx) / fx], widened on each side by 0.3 of its half extent
 // (kFrustumMargin = 0.15 of the width, over fx); likewise Y/Z. With cx = width / 2 this is
 // the reference's +-1.3 tan(fov_x / 2).
-#ifndef M4D_RENDER_PROJECTION_CONSTANTS_H_
-#define M4D_RENDER_PROJECTION_CONSTANTS_H_
+#ifndef M4D_SDK_RENDER_PROJECTION_CONSTANTS_H_
+#define M4D_SDK_RENDER_PROJECTION_CONSTANTS_H_
 
 #include "sdk/src/render/camera.h"
 
@@ -32,4 +32,4 @@ ProjectionConstants MakeProjectionConstants(const Camera& camera);
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_PROJECTION_CONSTANTS_H_
+#endif  // M4D_SDK_RENDER_PROJECTION_CONSTANTS_H_

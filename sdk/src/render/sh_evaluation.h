@@ -1,8 +1,8 @@
 // Spherical-harmonics colour of a Gaussian, with the constants, basis signs and coefficient
 // order of the reference 3DGS rasterizer: degree 0..3, coefficient k of channel c stored at
 // sh[3 * k + c], evaluated in the unit direction from the camera centre to the Gaussian mean.
-#ifndef M4D_RENDER_SH_EVALUATION_H_
-#define M4D_RENDER_SH_EVALUATION_H_
+#ifndef M4D_SDK_RENDER_SH_EVALUATION_H_
+#define M4D_SDK_RENDER_SH_EVALUATION_H_
 
 namespace m4d {
 
@@ -25,4 +25,4 @@ void ShColour(const float* basis, int coefficients, const float* sh, float colou
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_SH_EVALUATION_H_
+#endif  // M4D_SDK_RENDER_SH_EVALUATION_H_

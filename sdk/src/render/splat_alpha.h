@@ -8,8 +8,8 @@
 // functions, and both are compiled without floating-point contraction, so the backward
 // recomputes every alpha and every skip decision bit for bit. exp is a polynomial rather
 // than the C library's so that it vectorises and gives the same bits everywhere.
-#ifndef M4D_RENDER_SPLAT_ALPHA_H_
-#define M4D_RENDER_SPLAT_ALPHA_H_
+#ifndef M4D_SDK_RENDER_SPLAT_ALPHA_H_
+#define M4D_SDK_RENDER_SPLAT_ALPHA_H_
 
 #include <cstdint>
 #include <cstring>
@@ -73,4 +73,4 @@ V SplatPower(V dx, float dy, float a, float b, float c) {
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_SPLAT_ALPHA_H_
+#endif  // M4D_SDK_RENDER_SPLAT_ALPHA_H_

@@ -3,8 +3,8 @@
 // scales exp(log_scale), 3D covariance R S S^T R^T, the EWA Jacobian times the camera
 // rotation (with X/Z, Y/Z clamped, projection_constants.h) and the dilated 2D covariance.
 // Defined once, in the SDK, so that every caller gets the SDK's floating-point behaviour.
-#ifndef M4D_RENDER_SPLAT_GEOMETRY_H_
-#define M4D_RENDER_SPLAT_GEOMETRY_H_
+#ifndef M4D_SDK_RENDER_SPLAT_GEOMETRY_H_
+#define M4D_SDK_RENDER_SPLAT_GEOMETRY_H_
 
 #include "sdk/src/render/projection_constants.h"
 
@@ -27,4 +27,4 @@ bool ComputeSplatGeometry(const ProjectionConstants& pc, const float position[3]
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_SPLAT_GEOMETRY_H_
+#endif  // M4D_SDK_RENDER_SPLAT_GEOMETRY_H_

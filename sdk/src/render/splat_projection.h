@@ -13,8 +13,8 @@
 // an ellipse whose bounding box has half extents k sqrt(cov_xx), k sqrt(cov_yy). The extent is
 // that box, with k^2 widened by 0.05 (far beyond float rounding), within the radius square;
 // pixels outside it could only be skipped.
-#ifndef M4D_RENDER_SPLAT_PROJECTION_H_
-#define M4D_RENDER_SPLAT_PROJECTION_H_
+#ifndef M4D_SDK_RENDER_SPLAT_PROJECTION_H_
+#define M4D_SDK_RENDER_SPLAT_PROJECTION_H_
 
 #include <cstddef>
 
@@ -31,4 +31,4 @@ void ProjectSplats(const ProjectionConstants& pc, const GaussianLayerView& layer
 
 }  // namespace m4d
 
-#endif  // M4D_RENDER_SPLAT_PROJECTION_H_
+#endif  // M4D_SDK_RENDER_SPLAT_PROJECTION_H_

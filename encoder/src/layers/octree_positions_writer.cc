@@ -1,4 +1,4 @@
-#include "encoder/src/layers/octree_position_writer.h"
+#include "encoder/src/layers/octree_positions_writer.h"
 
 #include <vector>
 

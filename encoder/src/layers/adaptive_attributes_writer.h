@@ -1,6 +1,6 @@
 // Encoding of adaptive_attributes() (bitstream-spec 5.7, version 0.8).
-#ifndef M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTE_WRITER_H_
-#define M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTE_WRITER_H_
+#ifndef M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTES_WRITER_H_
+#define M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTES_WRITER_H_
 
 #include <cstdint>
 #include <vector>
@@ -16,4 +16,4 @@ std::vector<uint8_t> EncodeAdaptiveAttributes(const AdaptiveField* fields, int n
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTE_WRITER_H_
+#endif  // M4D_ENCODER_LAYERS_ADAPTIVE_ATTRIBUTES_WRITER_H_

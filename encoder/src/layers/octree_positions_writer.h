@@ -1,7 +1,7 @@
 // Encoding of octree_positions() (bitstream-spec 5.6, version 0.7): quantized positions as
 // the child masks of an octree, one symbol block per level, then the Gaussians per leaf.
-#ifndef M4D_ENCODER_LAYERS_OCTREE_POSITION_WRITER_H_
-#define M4D_ENCODER_LAYERS_OCTREE_POSITION_WRITER_H_
+#ifndef M4D_ENCODER_LAYERS_OCTREE_POSITIONS_WRITER_H_
+#define M4D_ENCODER_LAYERS_OCTREE_POSITIONS_WRITER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -23,4 +23,4 @@ Status WriteOctreePositions(const uint32_t* q, size_t n, int bits, RansLayout la
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_LAYERS_OCTREE_POSITION_WRITER_H_
+#endif  // M4D_ENCODER_LAYERS_OCTREE_POSITIONS_WRITER_H_

@@ -1,4 +1,4 @@
-#include "encoder/src/stream/sequence_header_writer.h"
+#include "encoder/src/bitstream/sequence_header_writer.h"
 
 #include "sdk/src/common/spec_limits.h"
 

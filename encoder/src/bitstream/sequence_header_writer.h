@@ -1,6 +1,6 @@
 // Serialisation of the SEQUENCE_HEADER payload (bitstream-spec 4.1).
-#ifndef M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
-#define M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
+#ifndef M4D_ENCODER_BITSTREAM_SEQUENCE_HEADER_WRITER_H_
+#define M4D_ENCODER_BITSTREAM_SEQUENCE_HEADER_WRITER_H_
 
 #include "sdk/src/bitstream/sequence_header.h"
 #include "sdk/src/common/byte_writer.h"
@@ -12,4 +12,4 @@ Status WriteSequenceHeader(const SequenceHeader& header, ByteWriter* out);
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_STREAM_SEQUENCE_HEADER_WRITER_H_
+#endif  // M4D_ENCODER_BITSTREAM_SEQUENCE_HEADER_WRITER_H_

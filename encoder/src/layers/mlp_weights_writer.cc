@@ -1,4 +1,4 @@
-#include "encoder/src/layers/mlp_writer.h"
+#include "encoder/src/layers/mlp_weights_writer.h"
 
 #include <algorithm>
 #include <cfloat>

@@ -1,7 +1,7 @@
 // Encoding of MLP_WEIGHTS (bitstream-spec 4.3): per-tensor uniform quantization to at most
 // 12-bit integers, each tensor a symbol block.
-#ifndef M4D_ENCODER_LAYERS_MLP_WRITER_H_
-#define M4D_ENCODER_LAYERS_MLP_WRITER_H_
+#ifndef M4D_ENCODER_LAYERS_MLP_WEIGHTS_WRITER_H_
+#define M4D_ENCODER_LAYERS_MLP_WEIGHTS_WRITER_H_
 
 #include "sdk/src/common/byte_writer.h"
 #include "sdk/src/common/status.h"
@@ -16,4 +16,4 @@ Status WriteMlpWeights(const MlpWeights& weights, int bits, RansLayout layout, B
 
 }  // namespace m4d
 
-#endif  // M4D_ENCODER_LAYERS_MLP_WRITER_H_
+#endif  // M4D_ENCODER_LAYERS_MLP_WEIGHTS_WRITER_H_

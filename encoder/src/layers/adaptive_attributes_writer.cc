@@ -1,5 +1,5 @@
 // Encoding of adaptive_attributes() (bitstream-spec 5.7).
-#include "encoder/src/layers/adaptive_attribute_writer.h"
+#include "encoder/src/layers/adaptive_attributes_writer.h"
 
 #include "encoder/src/entropy/binary_range_encoder.h"
 
