@@ -59,7 +59,7 @@ TEST(JpegIoTest, RoundTripAtQuality95) {
   }
 }
 
-// Colour detail at full resolution survives: chroma is not subsampled (4:2:0 gives 8 dB).
+// Colour detail at full resolution survives: chroma is not subsampled (4:2:0 would blur it).
 TEST(JpegIoTest, KeepsFullResolutionChroma) {
   Image in(32, 32, 3, 0.0f);
   for (int y = 0; y < 32; ++y) {
