@@ -77,7 +77,7 @@ void BM_RasterForward(benchmark::State& state) {
   const Camera camera =
       BenchCamera(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const GaussianSet set = BoxScene(static_cast<size_t>(state.range(2)), 1);
-  const GaussianLayerView view = LayerView(set);
+  const M4dGaussians view = GaussianView(set);
   const RenderSettings settings = BenchSettings(static_cast<int>(state.range(3)));
   RenderContext ctx;
   for (auto _ : state) {
@@ -92,7 +92,7 @@ void BM_RasterForwardBackward(benchmark::State& state) {
       BenchCamera(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const size_t n = static_cast<size_t>(state.range(2));
   const GaussianSet set = BoxScene(n, 1);
-  const GaussianLayerView view = LayerView(set);
+  const M4dGaussians view = GaussianView(set);
   const RenderSettings settings = BenchSettings(static_cast<int>(state.range(3)));
   std::vector<float> dl_dcolor(3 * static_cast<size_t>(camera.width) * camera.height);
   std::mt19937 rng(2);

@@ -52,7 +52,7 @@ TrainingViews BoxViews(int width, int height, const GaussianModel& truth) {
   TrainingViews views;
   RenderSettings settings;
   RenderContext context;
-  const GaussianLayerView layer = LayerView(truth);
+  const M4dGaussians layer = GaussianView(truth);
   for (int v = 0; v < 4; ++v) {
     Camera camera;
     camera.width = width;

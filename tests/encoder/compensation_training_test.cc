@@ -52,7 +52,7 @@ Scene MakeScene() {
   const size_t last = truth.size();
   s.moved.positions[3 * last + 2] = -20.0f;  // behind the cameras
   s.moved.rotations[4 * last] = 1.0f;
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(truth)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(truth)};
   RenderSettings settings;
   RenderContext context;
   const float target[3] = {0, 0, 0};
@@ -86,7 +86,8 @@ double MeanPsnr(const Scene& s, const GaussianSet& moved, const std::vector<uint
     kept.opacity_logits[j] = moved.opacity_logits[i];
     std::copy_n(&moved.sh[3 * i], 3, &kept.sh[3 * j]);
   }
-  const GaussianLayerView layers[3] = {LayerView(s.static_set), LayerView(kept), LayerView(added)};
+  const M4dGaussians layers[3] = {GaussianView(s.static_set), GaussianView(kept),
+                                  GaussianView(added)};
   RenderSettings settings;
   RenderContext context;
   double sum = 0;
@@ -248,7 +249,7 @@ TEST(CompensationTrainingTest, ViewspaceGradientsAreTheWholeImagesMean) {
   ASSERT_TRUE(
       MeasureViewspaceGradients(s.views, s.static_set, s.moved, 0, EncodeContext(), &measured)
           .ok());
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.moved)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(s.moved)};
   const size_t offset = s.static_set.size(), n = s.moved.size();
   std::vector<float> mean2d(2 * (offset + n)), sum(n, 0.0f);
   std::vector<int> seen(n, 0);

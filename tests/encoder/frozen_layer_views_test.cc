@@ -22,8 +22,8 @@ struct Result {
 
 // Renders the two layers (the first frozen) with or without the given projection and runs
 // the backward pass with dL/dcolour = 1.
-Result RenderBoth(const Camera& camera, const GaussianLayerView* layers,
-                  const RenderSettings& settings, const ProjectedSplats* first_layer) {
+Result RenderBoth(const Camera& camera, const M4dGaussians* layers, const RenderSettings& settings,
+                  const ProjectedSplats* first_layer) {
   RenderContext ctx;
   EXPECT_TRUE(RenderForward(camera, layers, 2, settings, nullptr, first_layer, &ctx).ok());
   const size_t n = layers[1].count;
@@ -51,7 +51,7 @@ TEST_P(FrozenLayerViewsTest, GivenProjectionRendersTheSameBitForBit) {
   cluster.count = 40;
   cluster.extent = 0.3f;
   const GaussianSet dynamic_set = test::RandomGaussians(cluster, 6);
-  const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(dynamic_set)};
+  const M4dGaussians layers[2] = {GaussianView(static_set), GaussianView(dynamic_set)};
   const Camera cameras[2] = {test::TestCamera(160, 120), test::TestCamera(96, 200)};
   RenderSettings settings;
   settings.sh_degree = 1;
@@ -87,7 +87,7 @@ TEST(FrozenLayerViewsTest, MismatchesAreRejected) {
   options.count = 7;
   const GaussianSet b = test::RandomGaussians(options, 2);
   const Camera camera = test::TestCamera(64, 48);
-  FrozenLayerViews frozen(LayerView(a), RenderSettings(), 1);
+  FrozenLayerViews frozen(GaussianView(a), RenderSettings(), 1);
   const ProjectedSplats* given = nullptr;
   const Image* render = nullptr;
   EXPECT_EQ(frozen.Projection(1, camera, &given).code(), M4D_ERR_INVALID_ARG);
@@ -95,7 +95,7 @@ TEST(FrozenLayerViewsTest, MismatchesAreRejected) {
   EXPECT_EQ(frozen.Render(1, camera, &render).code(), M4D_ERR_INVALID_ARG);
   ASSERT_TRUE(frozen.Projection(0, camera, &given).ok());
   // A projection of another layer's size.
-  const GaussianLayerView layers[2] = {LayerView(b), LayerView(a)};
+  const M4dGaussians layers[2] = {GaussianView(b), GaussianView(a)};
   RenderContext ctx;
   EXPECT_EQ(RenderForward(camera, layers, 2, RenderSettings(), nullptr, given, &ctx).code(),
             M4D_ERR_INVALID_ARG);

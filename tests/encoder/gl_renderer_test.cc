@@ -87,12 +87,12 @@ M4dRenderCamera ToApiCamera(const Camera& c) {
 
 // The CPU reference render of the frame's selected layers, as RGB bytes.
 std::vector<uint8_t> ReferenceRgb(const M4dFrame& frame, uint32_t layers, const Camera& camera) {
-  std::vector<GaussianLayerView> views;
+  std::vector<M4dGaussians> views;
   if ((layers & M4D_LAYER_STATIC) && frame.static_layer.count) {
-    views.push_back(LayerView(frame.static_layer));
+    views.push_back(frame.static_layer);
   }
   if ((layers & M4D_LAYER_DYNAMIC) && frame.dynamic_layer.count) {
-    views.push_back(LayerView(frame.dynamic_layer));
+    views.push_back(frame.dynamic_layer);
   }
   RenderSettings settings;
   settings.threads = 2;
@@ -262,7 +262,7 @@ TEST_F(GlRendererTest, DenseContentAgrees) {
   options.threads = 2;
   std::copy(kBackground, kBackground + 3, options.background);
   ASSERT_TRUE(GlSplatRenderer::Create(options, &renderer).ok());
-  const GaussianLayerView layer = LayerView(ball);
+  const M4dGaussians layer = GaussianView(ball);
   ASSERT_TRUE(renderer->Upload(&layer, 1).ok());
   for (const Camera& camera : RingCameras()) {
     ASSERT_TRUE(renderer->Draw(camera).ok());
@@ -306,8 +306,7 @@ TEST_F(GlRendererTest, OsmesaFallbackAgrees) {
   // The loader of OSMesa's context is the one its table was filled with; reuse the table.
   std::unique_ptr<GlSplatRenderer> renderer;
   ASSERT_TRUE(GlSplatRenderer::CreateWithFunctions(options, osmesa->gl(), &renderer).ok());
-  const GaussianLayerView layers[2] = {LayerView(frames_[3].static_layer),
-                                       LayerView(frames_[3].dynamic_layer)};
+  const M4dGaussians layers[2] = {frames_[3].static_layer, frames_[3].dynamic_layer};
   ASSERT_TRUE(renderer->Upload(layers, 2).ok());
   const Status drawn = renderer->Draw(camera);
   ASSERT_TRUE(drawn.ok()) << drawn.message();

@@ -57,7 +57,7 @@ TEST(ImportancePruningTest, WeightOfALoneGaussianIsItsRenderedAlpha) {
   ASSERT_TRUE(BlendingWeights(model, views, Settings(), &context, &workspace, &weights).ok());
   ASSERT_EQ(weights.size(), 1u);
   // White on black: each pixel's red is the Gaussian's alpha there.
-  const GaussianLayerView layer = LayerView(model);
+  const M4dGaussians layer = GaussianView(model);
   ASSERT_TRUE(RenderForward(views.cameras[0], &layer, 1, Settings(), nullptr, &context).ok());
   double alpha = 0;
   for (size_t p = 0; p < context.color.size(); p += 3) alpha += context.color[p];

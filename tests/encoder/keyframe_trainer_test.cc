@@ -70,7 +70,7 @@ Scene MakeScene() {
   capture.frame_count = 1;
   capture.cameras.resize(1);
   std::vector<Image> images;
-  const GaussianLayerView layer = LayerView(scene.truth);
+  const M4dGaussians layer = GaussianView(scene.truth);
   RenderSettings settings;
   settings.threads = 1;
   RenderContext context;
@@ -416,7 +416,7 @@ double ViewLoss(const GaussianModel& model, const TrainingViews& views) {
   RenderSettings settings;
   settings.sh_degree = 0;
   RenderContext context;
-  const GaussianLayerView layer = LayerView(model);
+  const M4dGaussians layer = GaussianView(model);
   EXPECT_TRUE(RenderForward(views.cameras[0], &layer, 1, settings, nullptr, &context).ok());
   Image rendered(views.cameras[0].width, views.cameras[0].height, 3);
   std::copy(context.color.begin(), context.color.end(), rendered.pixels.begin());
@@ -643,7 +643,7 @@ TEST(KeyframeTrainerTest, PhotoConsistentPointsReachContentFewViewsSee) {
   for (size_t i = 0; i < edge.size(); ++i) {
     for (int a = 0; a < 3; ++a) edge.positions[3 * i + a] += edge_centre[a];
   }
-  const GaussianLayerView layers[2] = {LayerView(centre), LayerView(edge)};
+  const M4dGaussians layers[2] = {GaussianView(centre), GaussianView(edge)};
   TrainingViews views;
   RenderSettings settings;
   RenderContext context;

@@ -64,7 +64,7 @@ TrainingViews ViewsWithBlobAt(const BlobScene& scene, float shift) {
   GaussianSet moved = scene.dynamic_set;
   for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i] += shift;
   TrainingViews views;
-  const GaussianLayerView layers[2] = {LayerView(scene.static_set), LayerView(moved)};
+  const M4dGaussians layers[2] = {GaussianView(scene.static_set), GaussianView(moved)};
   RenderSettings settings;
   RenderContext context;
   const float target[3] = {0, 0, 0};

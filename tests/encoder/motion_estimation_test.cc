@@ -52,7 +52,7 @@ Scene MakeScene(float red_change = 0.0f) {
   s.dynamic_set = test::RandomGaussians(blob, 22);
   s.moved_truth = Shifted(s.dynamic_set);
   for (size_t i = 0; i < s.moved_truth.size(); ++i) s.moved_truth.sh[3 * i] += red_change;
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.moved_truth)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(s.moved_truth)};
   RenderSettings settings;
   RenderContext context;
   const float target[3] = {0, 0, 0};

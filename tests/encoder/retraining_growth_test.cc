@@ -18,7 +18,7 @@ constexpr int kWidth = 64, kHeight = 48, kViews = 4;
 constexpr float kNewcomerY = 0.8f;
 
 // Four views of `layers` around the origin.
-TrainingViews Views(const std::vector<GaussianLayerView>& layers) {
+TrainingViews Views(const std::vector<M4dGaussians>& layers) {
   TrainingViews views;
   const float target[3] = {0, 0, 0};
   RenderSettings settings;
@@ -73,7 +73,7 @@ RetrainingGrowthOptions Options() {
 
 TEST(RetrainingGrowthTest, NothingGrowsWhereThePredictionExplainsTheViews) {
   const GaussianSet background = Background();
-  const TrainingViews views = Views({LayerView(background)});
+  const TrainingViews views = Views({GaussianView(background)});
   GaussianModel model;
   ASSERT_TRUE(ModelFromGaussianSet(background, 0, &model).ok());
   RetrainingGrowth growth;
@@ -86,7 +86,7 @@ TEST(RetrainingGrowthTest, NothingGrowsWhereThePredictionExplainsTheViews) {
 
 TEST(RetrainingGrowthTest, SeedsWhatAppearedWhereItIs) {
   const GaussianSet background = Background(), newcomer = Newcomer();
-  const TrainingViews views = Views({LayerView(background), LayerView(newcomer)});
+  const TrainingViews views = Views({GaussianView(background), GaussianView(newcomer)});
   GaussianModel model;
   ASSERT_TRUE(ModelFromGaussianSet(background, 0, &model).ok());
   RetrainingGrowthOptions options = Options();

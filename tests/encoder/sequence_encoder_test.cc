@@ -76,8 +76,8 @@ Capture MakeCapture(float speed = 0.06f) {
   for (int f = 0; f < kFrames; ++f) {
     GaussianSet moved = blob;
     for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i] += speed * f;
-    std::vector<GaussianLayerView> layers = {LayerView(background), LayerView(moved)};
-    if (f >= 3) layers.push_back(LayerView(newcomer));
+    std::vector<M4dGaussians> layers = {GaussianView(background), GaussianView(moved)};
+    if (f >= 3) layers.push_back(GaussianView(newcomer));
     for (int c = 0; c < kCameras; ++c) {
       EXPECT_TRUE(RenderForward(rig[c], layers.data(), static_cast<int>(layers.size()), settings,
                                 nullptr, &context)

@@ -33,7 +33,7 @@ Scene MakeScene() {
   s.dynamic_set = test::RandomGaussians(cluster, 12);
   GaussianSet moved = s.dynamic_set;
   for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i + 1] += 0.04f;
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(moved)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(moved)};
   const float target[3] = {0.0f, 0.0f, 0.0f};
   for (int v = 0; v < 3; ++v) {
     const float eye[3] = {-1.0f + v, 0.2f * v, -4.0f};
@@ -53,9 +53,9 @@ ViewBatchResult Gradients(const Scene& s, int threads, const std::vector<int>& b
   RenderSettings settings;
   settings.threads = threads;
   settings.sh_degree = 1;
-  FrozenLayerViews frozen(LayerView(s.static_set), settings, s.views.size());
+  FrozenLayerViews frozen(GaussianView(s.static_set), settings, s.views.size());
   ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &frozen);
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(s.dynamic_set)};
   ViewBatchResult result;
   EXPECT_TRUE(gradients.Compute(layers, batch, true, &result).ok());
   return result;
@@ -95,9 +95,9 @@ TEST(ViewBatchGradientsTest, BatchIsTheMeanOfItsViews) {
 TEST(ViewBatchGradientsTest, ViewOutOfRangeIsAnError) {
   const Scene s = MakeScene();
   RenderSettings settings;
-  FrozenLayerViews frozen(LayerView(s.static_set), settings, s.views.size());
+  FrozenLayerViews frozen(GaussianView(s.static_set), settings, s.views.size());
   ViewBatchGradients gradients(s.views, settings, kDefaultSsimWeight, &frozen);
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(s.dynamic_set)};
   ViewBatchResult result;
   EXPECT_EQ(gradients.Compute(layers, {0, 3}, false, &result).code(), M4D_ERR_INVALID_ARG);
 }

@@ -43,7 +43,7 @@ struct RefScene {
   }
 };
 
-inline RefLayer ToRefLayer(const GaussianLayerView& v) {
+inline RefLayer ToRefLayer(const M4dGaussians& v) {
   RefLayer l;
   l.sh_degree = v.sh_degree;
   l.count = v.count;

@@ -109,7 +109,7 @@ struct Case {
 Status RunForwardBackward(const Camera& camera, const std::vector<GaussianSet>& sets,
                           const RenderSettings& settings, const Loss& loss, RenderContext* ctx,
                           Gradients* grads) {
-  const std::vector<GaussianLayerView> views = test::Views(sets);
+  const std::vector<M4dGaussians> views = test::Views(sets);
   M4D_RETURN_IF_ERROR(
       RenderForward(camera, views.data(), static_cast<int>(views.size()), settings, nullptr, ctx));
   BackwardWorkspace ws;
@@ -154,7 +154,7 @@ void CheckGradients(const Case& c) {
   ASSERT_TRUE(RunForwardBackward(camera, sets, settings, loss, &ctx, &grads).ok());
 
   test::RefScene scene;
-  for (const GaussianSet& s : sets) scene.layers.push_back(test::ToRefLayer(LayerView(s)));
+  for (const GaussianSet& s : sets) scene.layers.push_back(test::ToRefLayer(GaussianView(s)));
   scene.mean_offset.assign(2 * scene.size(), 0.0);
   const test::ReferenceRenderer ref(camera, c.active_degree, settings.background);
   test::RefDecisions decisions;
@@ -273,7 +273,7 @@ TEST(SplatBackwardTest, GradientsMatchWithClampsAndEarlyStops) {
   const Camera camera = test::TestCamera(c.width, c.height);
   test::RefScene scene;
   const GaussianSet set = test::RandomGaussians(o, c.seed * 17);
-  scene.layers.push_back(test::ToRefLayer(LayerView(set)));
+  scene.layers.push_back(test::ToRefLayer(GaussianView(set)));
   test::RefDecisions d;
   test::ReferenceRenderer(camera, 3, c.background).Record(scene, &d);
   int clamped_alpha = 0, stopped = 0, clamped_colour = 0;
@@ -305,7 +305,7 @@ TEST(SplatBackwardTest, GradientsMatchWithClampedJacobian) {
 
   const Camera camera = test::TestCamera(c.width, c.height);
   test::RefScene scene;
-  scene.layers.push_back(test::ToRefLayer(LayerView(test::RandomGaussians(o, c.seed * 17))));
+  scene.layers.push_back(test::ToRefLayer(GaussianView(test::RandomGaussians(o, c.seed * 17))));
   test::RefDecisions d;
   test::ReferenceRenderer(camera, 3, c.background).Record(scene, &d);
   int clamped_visible = 0;
@@ -326,7 +326,7 @@ TEST(SplatBackwardTest, ViewspaceNormIsTheGradientInNdcUnits) {
   Gradients grads(sets);
   ASSERT_TRUE(RunForwardBackward(camera, sets, RenderSettings(), loss, &ctx, &grads).ok());
   test::RefScene scene;
-  scene.layers.push_back(test::ToRefLayer(LayerView(sets[0])));
+  scene.layers.push_back(test::ToRefLayer(GaussianView(sets[0])));
   scene.mean_offset.assign(2 * scene.size(), 0.0);
   const float bg[3] = {0, 0, 0};
   const test::ReferenceRenderer ref(camera, 3, bg);
@@ -535,7 +535,7 @@ TEST(SplatBackwardTest, BadInputIsRejected) {
   // A failed forward pass leaves nothing to differentiate.
   Camera bad = camera;
   bad.width = 0;
-  const std::vector<GaussianLayerView> views = test::Views(sets);
+  const std::vector<M4dGaussians> views = test::Views(sets);
   EXPECT_FALSE(RenderForward(bad, views.data(), 1, RenderSettings(), nullptr, &ctx).ok());
   EXPECT_EQ(RenderBackward(loss.dl_dcolor.data(), nullptr, &ctx, grads.Outputs(), &ws).code(),
             M4D_ERR_INVALID_ARG);

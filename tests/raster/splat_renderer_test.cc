@@ -54,7 +54,7 @@ GaussianSet OneGaussian(float x, float y, float z, float log_scale, float logit,
 Status Render(const Camera& camera, const std::vector<GaussianSet>& sets,
               const RenderSettings& settings, RenderContext* ctx,
               const float* error_image = nullptr) {
-  const std::vector<GaussianLayerView> views = test::Views(sets);
+  const std::vector<M4dGaussians> views = test::Views(sets);
   return RenderForward(camera, views.data(), static_cast<int>(views.size()), settings, error_image,
                        ctx);
 }
@@ -281,7 +281,7 @@ TEST(SplatRendererTest, MatchesBruteForceReference) {
     ASSERT_TRUE(Render(camera, sets, settings, &ctx).ok());
 
     test::RefScene scene;
-    for (const GaussianSet& s : sets) scene.layers.push_back(test::ToRefLayer(LayerView(s)));
+    for (const GaussianSet& s : sets) scene.layers.push_back(test::ToRefLayer(GaussianView(s)));
     test::RefDecisions decisions;
     const test::ReferenceRenderer ref(camera, k.active, settings.background);
     const test::RefImage expected = ref.Record(scene, &decisions);
@@ -320,7 +320,7 @@ TEST(SplatRendererTest, BlendWeightsSumToTheAlphaImageAndMatchDirectSums) {
 
   // Direct sums over the reference renderer's blend lists.
   test::RefScene scene;
-  scene.layers.push_back(test::ToRefLayer(LayerView(sets[0])));
+  scene.layers.push_back(test::ToRefLayer(GaussianView(sets[0])));
   test::RefDecisions d;
   const test::ReferenceRenderer ref(camera, 3, settings.background);
   ref.Record(scene, &d);
@@ -385,14 +385,14 @@ TEST(SplatRendererTest, NonFiniteGaussiansAreCulled) {
 
 TEST(SplatRendererTest, BadInputIsRejected) {
   const GaussianSet set = test::RandomGaussians(test::SceneOptions(), 1);
-  const GaussianLayerView view = LayerView(set);
+  const M4dGaussians view = GaussianView(set);
   const Camera good = test::TestCamera(32, 24);
   RenderContext ctx;
   const RenderSettings settings;
   ASSERT_TRUE(RenderForward(good, &view, 1, settings, nullptr, &ctx).ok());
   EXPECT_TRUE(ctx.valid);
 
-  auto code = [&](const Camera& c, const GaussianLayerView* v, int n, const RenderSettings& s) {
+  auto code = [&](const Camera& c, const M4dGaussians* v, int n, const RenderSettings& s) {
     return RenderForward(c, v, n, s, nullptr, &ctx).code();
   };
   EXPECT_EQ(RenderForward(good, &view, 1, settings, nullptr, nullptr).code(), M4D_ERR_INVALID_ARG);
@@ -433,7 +433,7 @@ TEST(SplatRendererTest, BadInputIsRejected) {
 
   EXPECT_EQ(code(good, nullptr, 1, settings), M4D_ERR_INVALID_ARG);
   EXPECT_EQ(code(good, &view, -1, settings), M4D_ERR_INVALID_ARG);
-  GaussianLayerView v = view;
+  M4dGaussians v = view;
   v.sh = nullptr;
   EXPECT_EQ(code(good, &v, 1, settings), M4D_ERR_INVALID_ARG);
   v = view;
@@ -442,16 +442,16 @@ TEST(SplatRendererTest, BadInputIsRejected) {
   v = view;
   v.count = kMaxRenderGaussians + 1;  // rejected before any array is read
   EXPECT_EQ(code(good, &v, 1, settings), M4D_ERR_LIMIT);
-  const GaussianLayerView two_halves[2] = {[&] {
-                                             GaussianLayerView h = view;
-                                             h.count = kMaxRenderGaussians / 2 + 1;
-                                             return h;
-                                           }(),
-                                           [&] {
-                                             GaussianLayerView h = view;
-                                             h.count = kMaxRenderGaussians / 2;
-                                             return h;
-                                           }()};
+  const M4dGaussians two_halves[2] = {[&] {
+                                        M4dGaussians h = view;
+                                        h.count = kMaxRenderGaussians / 2 + 1;
+                                        return h;
+                                      }(),
+                                      [&] {
+                                        M4dGaussians h = view;
+                                        h.count = kMaxRenderGaussians / 2;
+                                        return h;
+                                      }()};
   EXPECT_EQ(code(good, two_halves, 2, settings), M4D_ERR_LIMIT);
   EXPECT_FALSE(ctx.valid);
 }

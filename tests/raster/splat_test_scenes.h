@@ -89,9 +89,9 @@ inline GaussianSet RandomGaussians(const SceneOptions& o, unsigned seed) {
   return set;
 }
 
-inline std::vector<GaussianLayerView> Views(const std::vector<GaussianSet>& sets) {
-  std::vector<GaussianLayerView> views;
-  for (const GaussianSet& s : sets) views.push_back(LayerView(s));
+inline std::vector<M4dGaussians> Views(const std::vector<GaussianSet>& sets) {
+  std::vector<M4dGaussians> views;
+  for (const GaussianSet& s : sets) views.push_back(GaussianView(s));
   return views;
 }
 

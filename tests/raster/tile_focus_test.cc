@@ -24,7 +24,7 @@ struct Scene {
   Image target;
 };
 
-Image Render(const Camera& camera, const GaussianLayerView* layers, int count,
+Image Render(const Camera& camera, const M4dGaussians* layers, int count,
              const RenderSettings& settings, RenderContext* ctx) {
   EXPECT_TRUE(RenderForward(camera, layers, count, settings, nullptr, ctx).ok());
   Image image(camera.width, camera.height, 3);
@@ -45,7 +45,7 @@ Scene MakeScene() {
   s.dynamic_set = test::RandomGaussians(cluster, 72);
   GaussianSet moved = s.dynamic_set;
   for (size_t i = 0; i < moved.size(); ++i) moved.positions[3 * i] += 0.03f;
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(moved)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(moved)};
   RenderContext ctx;
   s.target = Render(s.camera, layers, 2, RenderSettings(), &ctx);
   return s;
@@ -62,7 +62,7 @@ std::vector<float> DynamicGradients(const Scene& s, Focus mode, RenderContext* c
   const bool focused = mode != Focus::kNone;
   if (focused) settings.focus_layer = 1;
   if (mode == Focus::kStaticAround) settings.focus_margin = 0;
-  const GaussianLayerView layers[2] = {LayerView(s.static_set), LayerView(s.dynamic_set)};
+  const M4dGaussians layers[2] = {GaussianView(s.static_set), GaussianView(s.dynamic_set)};
   *rendered = Render(s.camera, layers, 2, settings, ctx);
   PhotometricLossValue value;
   Image grad;

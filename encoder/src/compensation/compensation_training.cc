@@ -75,7 +75,7 @@ void Abandon(size_t moved_count, size_t candidate_count, int sh_degree,
 
 // Total blend weight over all views of every Gaussian of the layers after layer 0, the static
 // one. Their splats lie within the focus on them, so only its tiles are rendered.
-Status BlendWeights(const TrainingViews& views, const GaussianLayerView* layers, int count,
+Status BlendWeights(const TrainingViews& views, const M4dGaussians* layers, int count,
                     RenderSettings settings, FrozenLayerViews* static_views, RenderContext* context,
                     std::vector<float>* total) {
   settings.blend_weights = true;
@@ -102,7 +102,8 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
   const RenderSettings settings = Settings(sh_degree, encode);
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
-    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    own_views =
+        std::make_unique<FrozenLayerViews>(GaussianView(static_set), settings, views.size());
     static_views = own_views.get();
   }
   // The moved set's splats lie within the focus on it; the loss reads the tiles around it
@@ -112,7 +113,7 @@ Status MeasureViewspaceGradients(const TrainingViews& views, const GaussianSet& 
   focused.focus_margin = 0;
   focused.blend_weights = blend_weight != nullptr;
   if (blend_weight) blend_weight->assign(moved.size(), 0.0f);
-  const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
+  const M4dGaussians layers[2] = {GaussianView(static_set), GaussianView(moved)};
   const size_t offset = static_set.size(), n = moved.size();
   std::vector<float> sum(n, 0.0f), mean2d(2 * (offset + n));
   std::vector<int> seen(n, 0);
@@ -172,7 +173,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   FrozenLayerViews* static_views = sharing.static_views;
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
-    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    own_views =
+        std::make_unique<FrozenLayerViews>(GaussianView(static_set), settings, views.size());
     static_views = own_views.get();
   }
 
@@ -184,7 +186,7 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
     if (sharing.moved_blend_weight) {
       weight = *sharing.moved_blend_weight;
     } else {
-      const GaussianLayerView layers[2] = {LayerView(static_set), LayerView(moved)};
+      const M4dGaussians layers[2] = {GaussianView(static_set), GaussianView(moved)};
       M4D_RETURN_IF_ERROR(
           BlendWeights(views, layers, 2, settings, static_views, &context, &weight));
       offset = static_set.size();
@@ -238,7 +240,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
       color_count = 0;
     }
     const int view = order[cursor++];
-    const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
+    const M4dGaussians layers[3] = {GaussianView(static_set), GaussianView(kept),
+                                    GaussianView(model)};
     const Camera& camera = views.cameras[view];
     const ProjectedSplats* static_projection = nullptr;
     M4D_RETURN_IF_ERROR(static_views->Projection(view, camera, &static_projection));
@@ -279,7 +282,8 @@ Status TrainCompensation(const TrainingViews& views, const GaussianSet& static_s
   prune();
   // Added Gaussians that no view sees carry nothing.
   if (model.size() > 0) {
-    const GaussianLayerView layers[3] = {LayerView(static_set), LayerView(kept), LayerView(model)};
+    const M4dGaussians layers[3] = {GaussianView(static_set), GaussianView(kept),
+                                    GaussianView(model)};
     std::vector<float> weight;
     M4D_RETURN_IF_ERROR(BlendWeights(views, layers, 3, settings, static_views, &context, &weight));
     std::vector<uint8_t> keep(model.size());

@@ -41,7 +41,7 @@ Status ErrorWeights(const GaussianModel& model, const TrainingViews& views,
   std::vector<float> pixel_error;
   RenderSettings weighted = settings;
   weighted.blend_weights = true;
-  const GaussianLayerView layer = LayerView(model);
+  const M4dGaussians layer = GaussianView(model);
   for (int v = 0; v < views.size(); ++v) {
     M4D_RETURN_IF_ERROR(RenderView(model, views.cameras[v], settings, &context, &rendered));
     const Image& truth = views.images[v];
@@ -77,7 +77,7 @@ Status ChangeSupport(const GaussianModel& keyframe, const TrainingViews& keyfram
   RenderContext context;
   RenderSettings weighted = settings;
   weighted.blend_weights = true;
-  const GaussianLayerView layer = LayerView(keyframe);
+  const M4dGaussians layer = GaussianView(keyframe);
   for (int v = 0; v < step.size(); ++v) {
     TemporalChange change;
     M4D_RETURN_IF_ERROR(

@@ -34,9 +34,9 @@ struct TensorAdam {
 };
 
 // The dynamic set with moved positions and rotations (and changed colours), for rendering.
-GaussianLayerView MovedView(const GaussianSet& set, const std::vector<float>& positions,
-                            const std::vector<float>& rotations, const float* sh) {
-  GaussianLayerView view = LayerView(set);
+M4dGaussians MovedView(const GaussianSet& set, const std::vector<float>& positions,
+                       const std::vector<float>& rotations, const float* sh) {
+  M4dGaussians view = GaussianView(set);
   view.positions = positions.data();
   view.rotations = rotations.data();
   if (sh) view.sh = sh;
@@ -167,7 +167,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   options.context.ApplyTo(&settings);
   std::unique_ptr<FrozenLayerViews> own_views;
   if (!static_views) {
-    own_views = std::make_unique<FrozenLayerViews>(LayerView(static_set), settings, views.size());
+    own_views =
+        std::make_unique<FrozenLayerViews>(GaussianView(static_set), settings, views.size());
     static_views = own_views.get();
   }
   ViewBatchGradients batch_gradients(views, settings, options.ssim_weight, static_views);
@@ -204,8 +205,8 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
     const float* sh = appearance
                           ? appearance->NoisySh(dynamic_set, options.simulate_quantization, &rng)
                           : nullptr;
-    const GaussianLayerView layers[2] = {LayerView(static_set),
-                                         MovedView(dynamic_set, moved_p, moved_q, sh)};
+    const M4dGaussians layers[2] = {GaussianView(static_set),
+                                    MovedView(dynamic_set, moved_p, moved_q, sh)};
     batch_views.clear();
     int pass_start = 0;  // the batch's first view of the current pass through the views
     for (int b = 0; b < batch; ++b) {

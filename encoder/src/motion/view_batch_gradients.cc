@@ -33,7 +33,7 @@ ViewBatchGradients::ViewBatchGradients(const TrainingViews& views, const RenderS
 
 ViewBatchGradients::~ViewBatchGradients() = default;
 
-Status ViewBatchGradients::RenderView(int view, const GaussianLayerView layers[2], int threads,
+Status ViewBatchGradients::RenderView(int view, const M4dGaussians layers[2], int threads,
                                       Slot* slot) {
   const Camera& camera = views_.cameras[view];
   RenderSettings settings = settings_;
@@ -64,7 +64,7 @@ Status ViewBatchGradients::RenderView(int view, const GaussianLayerView layers[2
                         &slot->workspace);
 }
 
-Status ViewBatchGradients::Compute(const GaussianLayerView layers[2], const std::vector<int>& batch,
+Status ViewBatchGradients::Compute(const M4dGaussians layers[2], const std::vector<int>& batch,
                                    bool with_dc, ViewBatchResult* result) {
   while (slots_.size() < batch.size()) slots_.push_back(std::make_unique<Slot>(ssim_weight_));
   for (size_t b = 0; b < batch.size(); ++b) {

@@ -41,7 +41,7 @@ class ViewBatchGradients {
 
   // Renders layers (static, then the moved dynamic set) from each view of `batch` and sums
   // their gradients into *result; with_dc also sums the SH DC gradients.
-  Status Compute(const GaussianLayerView layers[2], const std::vector<int>& batch, bool with_dc,
+  Status Compute(const M4dGaussians layers[2], const std::vector<int>& batch, bool with_dc,
                  ViewBatchResult* result);
 
   // The threads this object runs on, for the step's other parallel work.
@@ -49,7 +49,7 @@ class ViewBatchGradients {
 
  private:
   struct Slot;
-  Status RenderView(int view, const GaussianLayerView layers[2], int threads, Slot* slot);
+  Status RenderView(int view, const M4dGaussians layers[2], int threads, Slot* slot);
 
   const TrainingViews& views_;
   RenderSettings settings_;

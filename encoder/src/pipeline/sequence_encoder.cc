@@ -254,7 +254,7 @@ Status SequenceEncoder::FinishGopStart(int frame, const TrainingViews& views) {
   const RenderSettings settings = EncoderRenderSettings(options_);
   gop.meter.reset();
   gop.static_views =
-      std::make_unique<FrozenLayerViews>(LayerView(gop.static_set), settings, views.size());
+      std::make_unique<FrozenLayerViews>(GaussianView(gop.static_set), settings, views.size());
   gop.meter = std::make_unique<TrainingPsnrMeter>(gop.static_set, settings, gop.static_views.get());
   M4D_RETURN_IF_ERROR(gop.meter->StartFrame(views));
   M4D_RETURN_IF_ERROR(gop.meter->Measure(gop.dynamic_set, &gop.keyframe_report.training_psnr));

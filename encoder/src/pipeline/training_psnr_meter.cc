@@ -67,7 +67,7 @@ Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) 
   RenderSettings focused = settings_;
   focused.focus_layer = 1;
   focused.focus_margin = 0;  // the tiles around hold the static render, as measured
-  const GaussianLayerView layers[2] = {LayerView(static_set_), LayerView(dynamic_set)};
+  const M4dGaussians layers[2] = {GaussianView(static_set_), GaussianView(dynamic_set)};
   double sum = 0;
   std::vector<double> errors;
   for (int v = 0; v < views_->size(); ++v) {

@@ -14,7 +14,7 @@ namespace {
 float Dot3(const float* a, const float* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // SH: gradients of the coefficients, and adds the view-direction term to dL/dposition.
-void BackpropagateColour(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree,
+void BackpropagateColour(const ProjectionConstants& pc, const M4dGaussians& layer, int degree,
                          size_t i, const float dl_dcolor[3], float* dl_dsh, float dl_dposition[3]) {
   const int stored = ShCoefficients(layer.sh_degree), active = ShCoefficients(degree);
   const float* sh = layer.sh + 3 * static_cast<size_t>(stored) * i;
@@ -94,14 +94,14 @@ void BackpropagateRotation(const float q[4], const float dl_dr[9], float dl_dq[4
 
 }  // namespace
 
-void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerView& layer,
+void BackpropagateProjection(const ProjectionConstants& pc, const M4dGaussians& layer,
                              int sh_degree, size_t i, const SplatGradient& grad,
                              uint8_t color_clamped, const LayerGradients& out) {
   const float* p = layer.positions + 3 * i;
   const float* q = layer.rotations + 4 * i;
   const float* log_scale = layer.log_scales + 3 * i;
   float* dl_dp = out.positions + 3 * i;
-  const int degree = std::min(sh_degree, layer.sh_degree);
+  const int degree = std::min(sh_degree, static_cast<int>(layer.sh_degree));
 
   // Opacity.
   const float opacity = 1.0f / (1.0f + std::exp(-layer.opacity_logits[i]));
@@ -168,7 +168,7 @@ void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerV
   BackpropagateRotation(q, dl_drot, out.rotations + 4 * i);
 }
 
-void ZeroGradients(const GaussianLayerView& layer, size_t i, const LayerGradients& out) {
+void ZeroGradients(const M4dGaussians& layer, size_t i, const LayerGradients& out) {
   std::fill(out.positions + 3 * i, out.positions + 3 * i + 3, 0.0f);
   std::fill(out.log_scales + 3 * i, out.log_scales + 3 * i + 3, 0.0f);
   std::fill(out.rotations + 4 * i, out.rotations + 4 * i + 4, 0.0f);

@@ -23,7 +23,7 @@ struct SplatGradient {
   float color[3];
 };
 
-// Caller-owned gradient arrays of one layer, laid out like its GaussianLayerView.
+// Caller-owned gradient arrays of one layer, laid out like its M4dGaussians.
 struct LayerGradients {
   float* positions = nullptr;       // 3 per Gaussian
   float* log_scales = nullptr;      // 3 per Gaussian
@@ -34,12 +34,12 @@ struct LayerGradients {
 
 // Writes the gradients of Gaussian i of `layer` (rendered with SH up to sh_degree, colour
 // clamp flags `color_clamped`) into out at i.
-void BackpropagateProjection(const ProjectionConstants& pc, const GaussianLayerView& layer,
+void BackpropagateProjection(const ProjectionConstants& pc, const M4dGaussians& layer,
                              int sh_degree, size_t i, const SplatGradient& grad,
                              uint8_t color_clamped, const LayerGradients& out);
 
 // Zeroes the gradients of Gaussian i (a culled one).
-void ZeroGradients(const GaussianLayerView& layer, size_t i, const LayerGradients& out);
+void ZeroGradients(const M4dGaussians& layer, size_t i, const LayerGradients& out);
 
 }  // namespace m4d
 

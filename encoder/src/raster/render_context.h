@@ -37,7 +37,7 @@ struct RenderContext {
   bool valid = false;  // the last RenderForward succeeded
   Camera camera;
   RenderSettings settings;
-  std::vector<GaussianLayerView> layers;
+  std::vector<M4dGaussians> layers;
   size_t gaussian_count = 0;
   TileBins bins;
   std::vector<float> final_transmittance;  // per pixel

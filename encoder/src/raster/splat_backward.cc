@@ -95,7 +95,7 @@ void BackpropagateGaussians(const SplatGradients& out, uint32_t first_trainable,
                     [&](size_t begin, size_t end, int) {
                       size_t offset = 0;
                       for (int l = 0; l < out.layer_count; ++l) {
-                        const GaussianLayerView& layer = ctx->layers[l];
+                        const M4dGaussians& layer = ctx->layers[l];
                         const size_t lo = std::max(begin, offset);
                         const size_t hi = std::min(end, offset + layer.count);
                         const bool frozen = Frozen(out.layers[l]);

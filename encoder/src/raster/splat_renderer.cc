@@ -29,14 +29,14 @@ Status ValidateSettings(const RenderSettings& s) {
   return Status::Ok();
 }
 
-Status ValidateLayers(const GaussianLayerView* layers, int layer_count) {
+Status ValidateLayers(const M4dGaussians* layers, int layer_count) {
   if (layer_count < 0 || (layer_count > 0 && !layers)) {
     return InvalidArg("render: bad layer list");
   }
   size_t total = 0;
   for (int l = 0; l < layer_count; ++l) {
-    const GaussianLayerView& v = layers[l];
-    if (v.sh_degree < 0 || v.sh_degree > 3) return InvalidArg("render: layer SH degree above 3");
+    const M4dGaussians& v = layers[l];
+    if (v.sh_degree > 3) return InvalidArg("render: layer SH degree above 3");
     if (v.count > kMaxRenderGaussians - total) return LimitError("render: too many Gaussians");
     total += v.count;
     if (v.count > 0 &&
@@ -47,7 +47,7 @@ Status ValidateLayers(const GaussianLayerView* layers, int layer_count) {
   return Status::Ok();
 }
 
-void PrepareState(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+void PrepareState(const Camera& camera, const M4dGaussians* layers, int layer_count,
                   const RenderSettings& settings, RenderContext* ctx) {
   if (!ctx->pool || ctx->pool_threads != settings.threads) {
     ctx->pool.reset();
@@ -58,7 +58,7 @@ void PrepareState(const Camera& camera, const GaussianLayerView* layers, int lay
   ctx->settings = settings;
   ctx->layers.assign(layers, layers + layer_count);
   ctx->gaussian_count = 0;
-  for (const GaussianLayerView& v : ctx->layers) ctx->gaussian_count += v.count;
+  for (const M4dGaussians& v : ctx->layers) ctx->gaussian_count += v.count;
 }
 
 // Projects every layer, or copies the first one's given projection.
@@ -69,7 +69,7 @@ void Project(const ProjectionConstants& pc, const ProjectedSplats* first_layer,
                     [&](size_t begin, size_t end, int) {
                       size_t offset = 0;
                       for (size_t l = 0; l < ctx->layers.size(); ++l) {
-                        const GaussianLayerView& layer = ctx->layers[l];
+                        const M4dGaussians& layer = ctx->layers[l];
                         const size_t lo = std::max(begin, offset);
                         const size_t hi = std::min(end, offset + layer.count);
                         if (lo < hi && l == 0 && first_layer) {
@@ -160,13 +160,13 @@ void ReduceBlendWeights(bool blend_weights, bool error_weights, RenderContext* c
 
 }  // namespace
 
-Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+Status RenderForward(const Camera& camera, const M4dGaussians* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      RenderContext* context) {
   return RenderForward(camera, layers, layer_count, settings, error_image, nullptr, context);
 }
 
-Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+Status RenderForward(const Camera& camera, const M4dGaussians* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      const ProjectedSplats* first_layer, RenderContext* context) {
   if (!context) return InvalidArg("render: null context");
@@ -193,7 +193,7 @@ Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int 
   return Status::Ok();
 }
 
-Status ProjectLayer(const Camera& camera, const GaussianLayerView& layer, int sh_degree,
+Status ProjectLayer(const Camera& camera, const M4dGaussians& layer, int sh_degree,
                     ProjectedSplats* out) {
   M4D_RETURN_IF_ERROR(ValidateCamera(camera));
   if (sh_degree < 0 || sh_degree > 3) return InvalidArg("render: SH degree out of range");

@@ -27,7 +27,7 @@ namespace m4d {
 // inconsistent layer (null arrays, SH degree above 3), M4D_ERR_LIMIT beyond
 // kMaxRenderGaussians Gaussians or kMaxTileEntries (splat, tile) pairs, M4D_ERR_NOMEM when
 // memory runs out. Gaussians with non-finite values are culled.
-Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+Status RenderForward(const Camera& camera, const M4dGaussians* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      RenderContext* context);
 
@@ -36,13 +36,13 @@ Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int 
 // differs). Training renders a frozen layer (the static one, under motion estimation and
 // compensation) from the same views many times; it is projected once per view instead of
 // once per render. The result is identical.
-Status RenderForward(const Camera& camera, const GaussianLayerView* layers, int layer_count,
+Status RenderForward(const Camera& camera, const M4dGaussians* layers, int layer_count,
                      const RenderSettings& settings, const float* error_image,
                      const ProjectedSplats* first_layer, RenderContext* context);
 
 // Projects `layer` alone as RenderForward projects its first layer, on the calling thread.
 // Fails as RenderForward does for a bad camera, SH degree or layer.
-Status ProjectLayer(const Camera& camera, const GaussianLayerView& layer, int sh_degree,
+Status ProjectLayer(const Camera& camera, const M4dGaussians& layer, int sh_degree,
                     ProjectedSplats* out);
 
 }  // namespace m4d

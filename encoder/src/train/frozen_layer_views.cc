@@ -5,7 +5,7 @@
 
 namespace m4d {
 
-FrozenLayerViews::FrozenLayerViews(const GaussianLayerView& layer, const RenderSettings& settings,
+FrozenLayerViews::FrozenLayerViews(const M4dGaussians& layer, const RenderSettings& settings,
                                    int view_count)
     : layer_(layer),
       settings_(settings),

@@ -24,7 +24,7 @@ class FrozenLayerViews {
  public:
   // `layer`'s arrays must stay unchanged while this object is used; settings are those of the
   // renders it joins (SH degree, background, threads; no focus).
-  FrozenLayerViews(const GaussianLayerView& layer, const RenderSettings& settings, int view_count);
+  FrozenLayerViews(const M4dGaussians& layer, const RenderSettings& settings, int view_count);
 
   // The layer's projection for view `view` (index below view_count) seen by `camera`: made
   // on the first call for that view, the same object after. Fails as ProjectLayer does.
@@ -36,7 +36,7 @@ class FrozenLayerViews {
  private:
   Status CheckView(int view) const;
 
-  GaussianLayerView layer_;
+  M4dGaussians layer_;
   RenderSettings settings_;
   std::vector<ProjectedSplats> projections_;
   std::vector<bool> projected_;

@@ -84,10 +84,11 @@ void QuaternionMatrix(const float* q, float r[9]) {
   r[6] = 2 * (x * z - w * y), r[7] = 2 * (y * z + w * x), r[8] = 1 - 2 * (x * x + y * y);
 }
 
-GaussianLayerView LayerView(const GaussianModel& model) {
-  GaussianLayerView v;
-  v.count = model.size();
-  v.sh_degree = model.sh_degree;
+M4dGaussians GaussianView(const GaussianModel& model) {
+  M4dGaussians v = {};
+  v.count = static_cast<uint32_t>(model.size());
+  v.sh_degree = static_cast<uint32_t>(model.sh_degree);
+  v.sh_coefficients = static_cast<uint32_t>(ShCoefficients(model.sh_degree));
   v.positions = model.positions.data();
   v.log_scales = model.log_scales.data();
   v.rotations = model.rotations.data();

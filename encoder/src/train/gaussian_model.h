@@ -58,7 +58,7 @@ struct GaussianModel {
 void QuaternionMatrix(const float* q, float r[9]);
 
 // For RenderForward.
-GaussianLayerView LayerView(const GaussianModel& model);
+M4dGaussians GaussianView(const GaussianModel& model);
 // For RenderBackward: a model used as gradient storage (same size and SH degree as the
 // rendered model).
 LayerGradients GradientView(GaussianModel* gradients);

@@ -12,7 +12,7 @@ Status BlendingWeights(const GaussianModel& model, const TrainingViews& views,
                        BackwardWorkspace* workspace, std::vector<double>* weights) {
   M4D_RETURN_IF_ERROR(CheckTrainingViews(views));
   weights->assign(model.size(), 0.0);
-  const GaussianLayerView layer = LayerView(model);
+  const M4dGaussians layer = GaussianView(model);
   const LayerGradients frozen = {};
   std::vector<float> ones, color(3 * model.size());
   for (int v = 0; v < views.size(); ++v) {

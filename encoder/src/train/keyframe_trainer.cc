@@ -239,7 +239,7 @@ Status KeyframeTrainer::ForwardBackward(int view) {
     M4D_RETURN_IF_ERROR(ModelFromGaussianSet(set, model_.sh_degree, &quantized_));
     CopyLeadingRows(model_, options_.frozen_gaussians, &quantized_);  // coded as they are
   }
-  GaussianLayerView layer = LayerView(QuantizationAware() ? quantized_ : model_);
+  M4dGaussians layer = GaussianView(QuantizationAware() ? quantized_ : model_);
   if (Smoothing()) {
     filter_.Apply(model_);
     layer = filter_.View(model_);

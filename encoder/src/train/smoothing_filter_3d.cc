@@ -71,8 +71,8 @@ void SmoothingFilter3d::Apply(const GaussianModel& model) {
   }
 }
 
-GaussianLayerView SmoothingFilter3d::View(const GaussianModel& model) const {
-  GaussianLayerView view = LayerView(model);
+M4dGaussians SmoothingFilter3d::View(const GaussianModel& model) const {
+  M4dGaussians view = GaussianView(model);
   view.log_scales = log_scales_.data();
   view.opacity_logits = opacity_logits_.data();
   return view;

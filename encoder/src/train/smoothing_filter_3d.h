@@ -30,7 +30,7 @@ class SmoothingFilter3d {
   // The filtered scales and opacities of `model` (the size Fit saw).
   void Apply(const GaussianModel& model);
   // `model`'s layer with the filtered scales and opacities of the last Apply.
-  GaussianLayerView View(const GaussianModel& model) const;
+  M4dGaussians View(const GaussianModel& model) const;
   // Turns the gradients with respect to the filtered log-scales and opacity logits into those
   // with respect to the model's, in place.
   void Backward(const GaussianModel& model, GaussianModel* gradients) const;

@@ -11,7 +11,7 @@ namespace m4d {
 
 Status RenderView(const GaussianModel& model, const Camera& camera, const RenderSettings& settings,
                   RenderContext* context, Image* image) {
-  const GaussianLayerView layer = LayerView(model);
+  const M4dGaussians layer = GaussianView(model);
   M4D_RETURN_IF_ERROR(RenderForward(camera, &layer, 1, settings, nullptr, context));
   Reshape(camera.width, camera.height, 3, image);
   std::transform(context->color.begin(), context->color.end(), image->pixels.begin(),

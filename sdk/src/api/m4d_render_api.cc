@@ -106,7 +106,7 @@ int m4d_renderer_upload(M4dRenderer* r, const M4dFrame* frame, uint32_t layers) 
   if (!frame || (layers & ~M4D_LAYER_ALL) != 0) {
     return Fail(r, m4d::Status(M4D_ERR_INVALID_ARG, "renderer: null frame or unknown layers"));
   }
-  m4d::GaussianLayerView views[2];
+  M4dGaussians views[2];
   int count = 0;
   const uint32_t wanted = layers & frame->layers;
   for (const M4dGaussians* g : {&frame->static_layer, &frame->dynamic_layer}) {
@@ -115,7 +115,7 @@ int m4d_renderer_upload(M4dRenderer* r, const M4dFrame* frame, uint32_t layers) 
     if (!ConsistentLayer(*g)) {
       return Fail(r, m4d::Status(M4D_ERR_INVALID_ARG, "renderer: inconsistent SH layout"));
     }
-    views[count++] = m4d::LayerView(*g);
+    views[count++] = *g;
   }
   try {
     const m4d::Status status = r->renderer->Upload(views, count);

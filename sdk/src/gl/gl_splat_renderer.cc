@@ -15,8 +15,8 @@ double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-Status CheckLayer(const GaussianLayerView& layer) {
-  if (layer.sh_degree < 0 || layer.sh_degree > 3) {
+Status CheckLayer(const M4dGaussians& layer) {
+  if (layer.sh_degree > 3) {
     return Status(M4D_ERR_INVALID_ARG, "renderer: SH degree must be 0..3");
   }
   if (layer.count > 0 && (!layer.positions || !layer.log_scales || !layer.rotations ||
@@ -26,7 +26,7 @@ Status CheckLayer(const GaussianLayerView& layer) {
   return Status::Ok();
 }
 
-void CopyLayer(const GaussianLayerView& from, GaussianSet* to) {
+void CopyLayer(const M4dGaussians& from, GaussianSet* to) {
   to->sh_degree = from.sh_degree;
   to->Resize(from.count);
   if (from.count == 0) return;
@@ -98,7 +98,7 @@ GlSplatRenderer::~GlSplatRenderer() {
   framebuffer_.reset();
 }
 
-Status GlSplatRenderer::Upload(const GaussianLayerView* layers, int layer_count) {
+Status GlSplatRenderer::Upload(const M4dGaussians* layers, int layer_count) {
   size_t total = 0;
   for (int l = 0; l < layer_count; ++l) {
     M4D_RETURN_IF_ERROR(CheckLayer(layers[l]));
@@ -124,8 +124,8 @@ Status GlSplatRenderer::HeadlessTarget(int width, int height) {
 
 Status GlSplatRenderer::Draw(const Camera& camera) {
   if (context_) M4D_RETURN_IF_ERROR(context_->MakeCurrent());
-  std::vector<GaussianLayerView> views;
-  for (const GaussianSet& set : layers_) views.push_back(LayerView(set));
+  std::vector<M4dGaussians> views;
+  for (const GaussianSet& set : layers_) views.push_back(GaussianView(set));
   SplatInstanceTimings cpu;
   M4D_RETURN_IF_ERROR(instances_builder_.Build(camera, views.data(), static_cast<int>(views.size()),
                                                options_.sh_degree, &instances_, &cpu));

@@ -51,7 +51,7 @@ class GlSplatRenderer {
   GlSplatRenderer& operator=(const GlSplatRenderer&) = delete;
 
   // Copies the layers (checked: arrays present, SH degree 0..3, count within the limit).
-  Status Upload(const GaussianLayerView* layers, int layer_count);
+  Status Upload(const M4dGaussians* layers, int layer_count);
   Status Draw(const Camera& camera);
   // The last headless draw, RGB bytes, row 0 at the top.
   Status ReadRgb(uint8_t* rgb, size_t size);

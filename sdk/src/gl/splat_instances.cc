@@ -49,7 +49,7 @@ uint32_t DepthKey(float depth) {
 
 }  // namespace
 
-Status SplatInstanceBuilder::Build(const Camera& camera, const GaussianLayerView* layers,
+Status SplatInstanceBuilder::Build(const Camera& camera, const M4dGaussians* layers,
                                    int layer_count, int sh_degree,
                                    std::vector<SplatInstance>* instances,
                                    SplatInstanceTimings* timings) {

@@ -45,8 +45,8 @@ class SplatInstanceBuilder {
 
   // Fills *instances, front to back, for the layers seen from camera (SH up to sh_degree).
   // M4D_ERR_INVALID_ARG for a bad camera (ValidateCamera) or SH degree.
-  Status Build(const Camera& camera, const GaussianLayerView* layers, int layer_count,
-               int sh_degree, std::vector<SplatInstance>* instances, SplatInstanceTimings* timings);
+  Status Build(const Camera& camera, const M4dGaussians* layers, int layer_count, int sh_degree,
+               std::vector<SplatInstance>* instances, SplatInstanceTimings* timings);
 
  private:
   ThreadPool pool_;

@@ -37,8 +37,8 @@ bool Finite3(const float* v) {
 }
 
 // The colour of Gaussian i, or false when it is not finite.
-bool SplatColour(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree,
-                 size_t i, float colour[3], uint8_t* clamped) {
+bool SplatColour(const ProjectionConstants& pc, const M4dGaussians& layer, int degree, size_t i,
+                 float colour[3], uint8_t* clamped) {
   const float* p = layer.positions + 3 * i;
   float dir[3];
   for (int a = 0; a < 3; ++a) dir[a] = p[a] - pc.centre[a];
@@ -57,7 +57,7 @@ bool SplatColour(const ProjectionConstants& pc, const GaussianLayerView& layer, 
   return Finite3(colour);
 }
 
-void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, int degree, size_t i,
+void ProjectOne(const ProjectionConstants& pc, const M4dGaussians& layer, int degree, size_t i,
                 size_t g, ProjectedSplats* out) {
   const float opacity = 1.0f / (1.0f + std::exp(-layer.opacity_logits[i]));
   SplatGeometry geo;
@@ -104,9 +104,9 @@ void ProjectOne(const ProjectionConstants& pc, const GaussianLayerView& layer, i
 
 }  // namespace
 
-void ProjectSplats(const ProjectionConstants& pc, const GaussianLayerView& layer, int sh_degree,
+void ProjectSplats(const ProjectionConstants& pc, const M4dGaussians& layer, int sh_degree,
                    size_t begin, size_t end, size_t offset, ProjectedSplats* out) {
-  const int degree = std::min(sh_degree, layer.sh_degree);
+  const int degree = std::min(sh_degree, static_cast<int>(layer.sh_degree));
   for (size_t i = begin; i < end; ++i) ProjectOne(pc, layer, degree, i, offset + i, out);
 }
 

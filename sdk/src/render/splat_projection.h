@@ -26,7 +26,7 @@ namespace m4d {
 
 // Projects Gaussians [begin, end) of `layer`, evaluating SH up to `sh_degree` (at most the
 // layer's), into out at global index offset + i.
-void ProjectSplats(const ProjectionConstants& pc, const GaussianLayerView& layer, int sh_degree,
+void ProjectSplats(const ProjectionConstants& pc, const M4dGaussians& layer, int sh_degree,
                    size_t begin, size_t end, size_t offset, ProjectedSplats* out);
 
 }  // namespace m4d
