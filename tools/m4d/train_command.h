@@ -1,4 +1,4 @@
-// m4d train: trains one frame's 3DGS model (the keyframe stage), reports held-out quality and
+// m4d train: trains one frame's 3DGS model (the keyframe stage, a training run of
 // speed, and writes the model as a 3DGS PLY.
 #ifndef M4D_TOOLS_M4D_TRAIN_COMMAND_H_
 #define M4D_TOOLS_M4D_TRAIN_COMMAND_H_
