@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -178,6 +179,10 @@ size_t SkipSymbolBlock(const Packet& p, size_t at) {
   return at + VaruintLength(p, 24 + at) + payload_size;
 }
 
+// The last version whose MOTION_GRID has the brick syntax (spec 4.4); the cases that damage it
+// edit a stream of that version.
+constexpr int kBrickSyntaxMinor = 9;
+
 // Payload offsets in a MOTION_GRID (spec 4.4) of level 0's brick_flags and values blocks. The
 // base stream's level 0 is one brick of 8^3 voxels, flagged.
 constexpr size_t kBrickFlagsOffset = 28;  // after box_min, box_scale and level 0's step
@@ -271,6 +276,21 @@ std::function<void(Stream*, std::vector<uint8_t>*)> SetAdaptiveStatic(
   };
 }
 
+// A MOTION_GRID of the base's three levels whose box holds no finite position: no voxel is
+// active (spec 4.4, 0.10), so it fits any dynamic set.
+std::vector<uint8_t> EmptyMotionGrid() {
+  std::vector<uint8_t> grid;
+  m4d::ByteWriter w(&grid);
+  for (int a = 0; a < 3; ++a) w.WriteF32(std::numeric_limits<float>::max());
+  for (int a = 0; a < 3; ++a) w.WriteF32(1.0f);
+  for (int l = 0; l < 3; ++l) {
+    w.WriteF32(1.0f / 64);
+    w.WriteVarUint(1);  // a one-symbol block of 0: no value
+    w.WriteVarSint(0);
+  }
+  return grid;
+}
+
 // GOP 0 replaced by a foreground-only GOP of SH degree 0 whose dynamic set holds
 // MAX_GAUSSIANS_PER_SET Gaussians and whose frame 1 adds one more (spec 9, E33).
 void DynamicSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
@@ -282,7 +302,7 @@ void DynamicSetAboveLimit(Stream* s, std::vector<uint8_t>*) {
   w.WriteVarUint(0);  // num_removed
   w.WriteBytes(ConstantSet(1));
   Stream gop = {sequence, MakePacket(M4D_PACKET_KEYFRAME_DYNAMIC, 0, false, ConstantSet(1u << 22)),
-                (*s)[kMlp], (*s)[kMotion],
+                (*s)[kMlp], MakePacket(M4D_PACKET_MOTION_GRID, 1, false, EmptyMotionGrid()),
                 MakePacket(M4D_PACKET_COMPENSATION, 1, true, compensation)};
   s->erase(s->begin(), s->begin() + 8);
   s->insert(s->begin(), gop.begin(), gop.end());
@@ -779,12 +799,21 @@ std::vector<Case> Cases() {
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kMotion];
          SetVaruint(&p, kBrickFlagsOffset + 1, 4);  // min_value 2 (zigzag): flags 2..
-       }},
+       },
+       kBrickSyntaxMinor},
       {"grid_value_outside_int16", "M4D_ERR_BITSTREAM",
        "level 0's values from -40000 (below -32768)",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kMotion];
          const size_t at = GridValuesOffset(p);
+         SetVaruint(&p, at + VaruintLength(p, 24 + at), 79999);  // min_value -40000 (zigzag)
+       },
+       kBrickSyntaxMinor},
+      {"active_grid_value_outside_int16", "M4D_ERR_BITSTREAM",
+       "level 0's active-voxel values (0.10) from -40000 (below -32768)",
+       [](Stream* s, std::vector<uint8_t>*) {
+         Packet& p = (*s)[kMotion];
+         const size_t at = kBrickFlagsOffset;                    // the values follow level 0's step
          SetVaruint(&p, at + VaruintLength(p, 24 + at), 79999);  // min_value -40000 (zigzag)
        }},
       {"alphabet_for_zero_values", "M4D_ERR_BITSTREAM",
@@ -792,7 +821,8 @@ std::vector<Case> Cases() {
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kMotion];
          SetVaruint(&p, kBrickFlagsOffset + 1, 0);  // min_value 0: the one brick not coded
-       }},
+       },
+       kBrickSyntaxMinor},
       {"draco_version_not_2_3", "M4D_ERR_BITSTREAM", "the Draco header's minor version 2",
        [](Stream* s, std::vector<uint8_t>*) {
          Packet& p = (*s)[kStatic];
@@ -876,7 +906,8 @@ std::vector<Case> Cases() {
          const uint32_t size = ReadVaruint(p, 24 + at);
          p.pop_back();
          SetVaruint(&p, at, size - 1);
-       }},
+       },
+       kBrickSyntaxMinor},
       {"static_set_above_limit", "M4D_ERR_LIMIT",
        "a STATIC_UPDATE adds a Gaussian to a static set of MAX_GAUSSIANS_PER_SET (2^22) constant "
        "ones",
@@ -929,7 +960,8 @@ std::vector<Case> ValidEdits() {
          p.erase(p.begin() + at, p.begin() + end);
          p.insert(p.begin() + at, block, block + sizeof(block));
          FixCrcs(&p);
-       }},
+       },
+       kBrickSyntaxMinor},
   };
 }
 
@@ -953,11 +985,14 @@ int main(int argc, char** argv) {
       ->excludes(out);
   app.require_option(1);
   M4D_PARSE_ARGUMENTS(app, argc, argv);
-  Stream base, base_v03;
-  if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base) || !MakeBase(3, &base_v03)) return 1;
+  Stream base, base_v03, base_bricks;
+  if (!MakeBase(M4D_BITSTREAM_VERSION_MINOR, &base) || !MakeBase(3, &base_v03) ||
+      !MakeBase(kBrickSyntaxMinor, &base_bricks)) {
+    return 1;
+  }
   if (!valid_dir.empty()) {
     for (const Case& c : ValidEdits()) {
-      Stream stream = base;
+      Stream stream = c.base_minor == kBrickSyntaxMinor ? base_bricks : base;
       std::vector<uint8_t> tail;
       c.edit(&stream, &tail);
       if (stream.empty()) {
@@ -978,7 +1013,9 @@ int main(int argc, char** argv) {
   expected << "# <stream> <first error a decoder reports> <what is wrong>\n";
   int written = 0;
   for (const Case& c : Cases()) {
-    Stream stream = c.base_minor == 3 ? base_v03 : base;
+    Stream stream = c.base_minor == 3                   ? base_v03
+                    : c.base_minor == kBrickSyntaxMinor ? base_bricks
+                                                        : base;
     std::vector<uint8_t> tail;
     c.edit(&stream, &tail);
     if (!WriteStream(dir + "/" + c.name + ".m4d", stream, tail)) return 1;

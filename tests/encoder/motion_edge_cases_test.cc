@@ -158,7 +158,12 @@ TEST(MotionEdgeCases, EveryBranchOccursInTheConformanceStream) {
     MotionGrid grid;
     GaussianSet before;
     if (type == M4D_PACKET_MOTION_GRID) {
-      ASSERT_TRUE(ReadMotionGrid(&payload, seq.rans_layout(), seq.grid, &grid).ok());
+      const Status read =
+          seq.codes_active_voxels()
+              ? ReadActiveMotionGrid(&payload, seq.rans_layout(), seq.grid,
+                                     dynamic_set->positions.data(), dynamic_set->size(), &grid)
+              : ReadMotionGrid(&payload, seq.rans_layout(), seq.grid, &grid);
+      ASSERT_TRUE(read.ok()) << read.message();
       before = *dynamic_set;
     }
     ASSERT_TRUE(decoder.SendPacket(packet.data(), packet.size()).ok());

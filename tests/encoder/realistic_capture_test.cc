@@ -58,6 +58,29 @@ double DynamicShare(const FrameReport& f) {
          static_cast<double>(f.dynamic_count + f.static_count);
 }
 
+// The inter frames' rate on realistic content: their mean within a byte budget, and no GOP's
+// inter frame above 1.35 times its first. Measured at bitstream 0.10 (active-voxel grids):
+// 575, 641 and 670 bytes; the brick syntax of 0.9 coded the same frames' grids in about
+// twice the bytes (docs/results/2026-11-30-active-voxel-grids.md).
+void ExpectInterFramesWithinBudget(const SequenceReport& report) {
+  constexpr double kMeanBudget = 800;
+  double sum = 0, first = 0;
+  int count = 0;
+  for (const FrameReport& f : report.frames) {
+    if (f.keyframe) {
+      first = 0;
+      continue;
+    }
+    const double bytes = static_cast<double>(f.bytes.total());
+    if (first == 0) first = bytes;
+    EXPECT_LE(bytes, 1.35 * first) << "frame " << f.frame_index << " grew along its GOP";
+    sum += bytes;
+    ++count;
+  }
+  ASSERT_GT(count, 0);
+  EXPECT_LE(sum / count, kMeanBudget);
+}
+
 TEST(RealisticCaptureTest, LoadsAsARightHandedPinholeCapture) {
   const Capture capture = RealisticCapture();
   ASSERT_EQ(capture.camera_count(), 4);
@@ -72,7 +95,7 @@ TEST(RealisticCaptureTest, LoadsAsARightHandedPinholeCapture) {
 // Decoupling keeps the background static on noisy sparse views (the change support only takes
 // dynamic flags away from the paper's rule); a GOP restarts only once content has appeared
 // (the emergent object, frame 2 of these 4), not on noise, flicker or sway; and inter frames
-// stay within 1 dB of their keyframe on the held-out camera.
+// stay within 1 dB of their keyframe on the held-out camera, within a byte budget.
 TEST(RealisticCaptureTest, DecisionsHoldOnNoisySparseViews) {
   const Capture capture = RealisticCapture();
   SequenceReport ours, paper;
@@ -105,6 +128,7 @@ TEST(RealisticCaptureTest, DecisionsHoldOnNoisySparseViews) {
       EXPECT_EQ(f.motion_skipped, !(f.motion_gain > 0)) << f.frame_index;
     }
   }
+  ExpectInterFramesWithinBudget(ours);
 }
 
 }  // namespace

@@ -363,14 +363,21 @@ struct Walk {
     bool any = false;
     for (int l = 0; l < levels; ++l) {
       const float step = r->F32();
-      const auto flags = SymbolBlock(r);
-      if (flags.first > 1) Add("bricks_mixed");
-      if (flags.first == 1 && flags.second == 1) Add("bricks_all_one");
-      const bool coded = flags.first > 1 || flags.second == 1;
+      bool coded = false;
+      if (version_minor >= 10) {  // the active voxels' values (0.10)
+        const auto values = SymbolBlock(r);
+        coded = values.first > 1 || values.second != 0;
+        if (coded) Add("grid_active_values");
+      } else {
+        const auto flags = SymbolBlock(r);
+        if (flags.first > 1) Add("bricks_mixed");
+        if (flags.first == 1 && flags.second == 1) Add("bricks_all_one");
+        coded = flags.first > 1 || flags.second == 1;
+        SymbolBlock(r);
+      }
       // 6.3 step 2 scales after the interpolation; only a level with values shows it.
       if (coded && !PowerOfTwo(step)) Add("grid_step_not_power_of_two");
       any = any || coded;
-      SymbolBlock(r);
     }
     if (!any) Add("grid_all_zero");
   }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "encoder/src/entropy/symbol_block_writer.h"
+#include "sdk/src/layers/grid_corners.h"
 
 namespace m4d {
 namespace {
@@ -87,21 +88,64 @@ Status WriteLevel(int r, int c, float step, const std::vector<int32_t>& q, RansL
   return WriteSymbolBlock(coded.data(), coded.size(), layout, out);
 }
 
+// Writes level l of the active-voxel syntax: the step, then the values of the voxels the
+// Gaussians at `positions` read, ascending, channels consecutive. The values elsewhere are
+// dropped: no Gaussian reads them, so they do not change the decoded frame.
+Status WriteActiveLevel(int r, int c, float step, const std::vector<int32_t>& q,
+                        const FloatMotionGrid& grid, const float* positions, size_t count,
+                        RansLayout layout, ByteWriter* out) {
+  std::vector<uint64_t> bitmap(ActiveVoxelWords(r), 0);
+  MarkActiveVoxels(grid.box_min, grid.box_scale, r, positions, count, bitmap.data());
+  std::vector<uint32_t> active;
+  AppendActiveVoxels(bitmap.data(), bitmap.size(), &active);
+  std::vector<int32_t> coded;
+  coded.reserve(active.size() * static_cast<size_t>(c));
+  for (uint32_t v : active) {
+    const int32_t* src = &q[static_cast<size_t>(v) * c];
+    coded.insert(coded.end(), src, src + c);
+  }
+  out->WriteF32(step);
+  return WriteSymbolBlock(coded.data(), coded.size(), layout, out);
+}
+
+// Checks the inputs and quantizes every level, so that a bad value leaves `out` untouched.
+Status QuantizeGrid(const GridConfig& config, const FloatMotionGrid& grid,
+                    std::vector<int32_t> q[kMaxGridLevels]) {
+  M4D_RETURN_IF_ERROR(CheckInputs(config, grid));
+  for (int l = 0; l < config.num_levels; ++l) {
+    M4D_RETURN_IF_ERROR(Quantize(grid.values[l], grid.step[l], &q[l]));
+  }
+  return Status::Ok();
+}
+
+void WriteBox(const FloatMotionGrid& grid, ByteWriter* out) {
+  for (int a = 0; a < 3; ++a) out->WriteF32(grid.box_min[a]);
+  for (int a = 0; a < 3; ++a) out->WriteF32(grid.box_scale[a]);
+}
+
 }  // namespace
 
 Status WriteMotionGrid(const GridConfig& config, const FloatMotionGrid& grid, RansLayout layout,
                        ByteWriter* out) {
-  M4D_RETURN_IF_ERROR(CheckInputs(config, grid));
-  // Quantize everything first so that a bad value leaves `out` untouched.
   std::vector<int32_t> q[kMaxGridLevels];
-  for (int l = 0; l < config.num_levels; ++l) {
-    M4D_RETURN_IF_ERROR(Quantize(grid.values[l], grid.step[l], &q[l]));
-  }
-  for (int a = 0; a < 3; ++a) out->WriteF32(grid.box_min[a]);
-  for (int a = 0; a < 3; ++a) out->WriteF32(grid.box_scale[a]);
+  M4D_RETURN_IF_ERROR(QuantizeGrid(config, grid, q));
+  WriteBox(grid, out);
   for (int l = 0; l < config.num_levels; ++l) {
     M4D_RETURN_IF_ERROR(
         WriteLevel(config.resolution[l], config.channels[l], grid.step[l], q[l], layout, out));
+  }
+  return Status::Ok();
+}
+
+Status WriteActiveMotionGrid(const GridConfig& config, const FloatMotionGrid& grid,
+                             const float* positions, size_t count, RansLayout layout,
+                             ByteWriter* out) {
+  std::vector<int32_t> q[kMaxGridLevels];
+  M4D_RETURN_IF_ERROR(QuantizeGrid(config, grid, q));
+  WriteBox(grid, out);
+  for (int l = 0; l < config.num_levels; ++l) {
+    M4D_RETURN_IF_ERROR(WriteActiveLevel(config.resolution[l], config.channels[l], grid.step[l],
+                                         q[l], grid, positions, count, layout, out));
   }
   return Status::Ok();
 }

@@ -24,7 +24,8 @@ void DenseGrids(const GridConfig& config, const float* steps, const MotionEstima
 
 // A frame without motion: a grid box that no finite position lies in (its lower corner at the
 // largest float), so the decoder leaves every Gaussian unchanged (bitstream-spec 6.3, step 1)
-// whatever the grid and MLP hold; every brick is zero, so the grid costs a few bytes.
+// whatever the grid and MLP hold; no voxel is active (every brick zero before 0.10), so the grid
+// costs a few bytes.
 void SkipMotion(FloatMotionGrid* grid);
 
 }  // namespace m4d

@@ -120,8 +120,12 @@ Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
   }
   std::vector<uint8_t> payload;
   ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(
-      WriteMotionGrid(options_.sequence.grid, grid, options_.sequence.rans_layout(), &writer));
+  const SequenceHeader& sequence = options_.sequence;
+  const GaussianSet& moved = moved_dynamic_set();  // frame t-1's, before this motion
+  M4D_RETURN_IF_ERROR(sequence.codes_active_voxels()
+                          ? WriteActiveMotionGrid(sequence.grid, grid, moved.positions.data(),
+                                                  moved.size(), sequence.rans_layout(), &writer)
+                          : WriteMotionGrid(sequence.grid, grid, sequence.rans_layout(), &writer));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MOTION_GRID, false, payload));
   motion_written_ = true;
   return Status::Ok();

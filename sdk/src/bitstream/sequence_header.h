@@ -16,7 +16,8 @@ namespace m4d {
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
 // keyframes, 0.3 is 0.4 without interleaved rANS states, 0.4 is 0.5 without smallest-three
 // rotations, 0.5 is 0.6 without codebooks, 0.6 is 0.7 with positions in Draco, 0.7 is 0.8
-// without adaptive attributes, 0.8 is 0.9 without up_axis; spec 10).
+// without adaptive attributes, 0.8 is 0.9 without up_axis, 0.9 is 0.10 with brick-coded grids;
+// spec 10).
 constexpr int kOldestBitstreamMinor = 2;
 
 // up_axis (spec 4.1): 0 not stated, 1..6 the world's up is +x, -x, +y, -y, +z, -z.
@@ -45,6 +46,9 @@ struct SequenceHeader {
   bool allows_appearance() const { return version_minor >= 3; }
   // The up_axis field ends the payload from 0.9 on.
   bool allows_up_axis() const { return version_minor >= 9; }
+  // MOTION_GRID codes the values of the voxels the dynamic set reads from 0.10 on, before it
+  // brick flags and the values of flagged bricks (spec 4.4).
+  bool codes_active_voxels() const { return version_minor >= 10; }
   // Interleaved rANS states exist from 0.4 on.
   RansLayout rans_layout() const {
     return version_minor >= 4 ? RansLayout::kInterleaved : RansLayout::kSingleState;

@@ -386,7 +386,11 @@ GaussianSet* Decoder::MutableStaticSet() {
 
 Status Decoder::DecodeMotion(const uint8_t* payload, size_t size) {
   ByteReader reader(payload, size);
-  Status status = ReadMotionGrid(&reader, sequence_.rans_layout(), sequence_.grid, &grid_);
+  const Status status =
+      sequence_.codes_active_voxels()
+          ? ReadActiveMotionGrid(&reader, sequence_.rans_layout(), sequence_.grid,
+                                 dynamic_->positions.data(), dynamic_->size(), &grid_)
+          : ReadMotionGrid(&reader, sequence_.rans_layout(), sequence_.grid, &grid_);
   if (!status.ok()) return Status(status.code(), "MOTION_GRID: " + status.message());
   M4D_RETURN_IF_ERROR(RequireConsumed(reader, "MOTION_GRID"));
   ApplyMotion(sequence_.grid, grid_, mlp_, MutableDynamicSet(), pool_.get());

@@ -7,6 +7,7 @@
 
 #include "sdk/src/common/spec_limits.h"
 #include "sdk/src/entropy/symbol_block_reader.h"
+#include "sdk/src/layers/grid_corners.h"
 
 namespace m4d {
 namespace {
@@ -100,10 +101,54 @@ Status ReadLevel(ByteReader* reader, RansLayout layout, int l, int r, int c, Buf
   return Status::Ok();
 }
 
-}  // namespace
+// Zeroes values[l] where it was last read, or all of it when that is unknown or its size
+// changes.
+void ClearLevel(size_t dense_size, int c, MotionGrid* grid, int l) {
+  Buffer<int16_t>& values = grid->values[l];
+  if (values.size() != dense_size || !grid->active_valid[l]) {
+    values.resize(dense_size);
+    std::memset(values.data(), 0, dense_size * sizeof(int16_t));  // assign() is no memset
+    return;
+  }
+  for (uint32_t v : grid->active_voxels[l]) {
+    std::memset(&values[static_cast<size_t>(v) * c], 0, c * sizeof(int16_t));
+  }
+}
 
-Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& config,
-                      MotionGrid* grid) {
+// Reads level(l) of the active-voxel syntax (spec 4.4, 0.10 on).
+Status ReadActiveLevel(ByteReader* reader, RansLayout layout, int l, int r, int c,
+                       const float* positions, size_t count, Buffer<int32_t>* coded,
+                       MotionGrid* grid) {
+  auto error = [l](const Status& status, const char* what) {
+    return Status(status.code(), "grid level " + std::to_string(l) + what + status.message());
+  };
+  if (!reader->ReadFiniteF32(&grid->step[l])) {
+    return error(BitstreamError(""), ": bad or missing step");
+  }
+  const size_t words = ActiveVoxelWords(r);
+  grid->active_bitmap.assign(words, 0);
+  MarkActiveVoxels(grid->box_min, grid->box_scale, r, positions, count, grid->active_bitmap.data());
+  const size_t rs = static_cast<size_t>(r);
+  ClearLevel(rs * rs * rs * static_cast<size_t>(c), c, grid, l);
+  Buffer<uint32_t>& active = grid->active_voxels[l];
+  active.clear();
+  AppendActiveVoxels(grid->active_bitmap.data(), words, &active);
+  grid->active_valid[l] = true;
+
+  // At most R_l^3 * C_l values, which the sequence header limits.
+  coded->resize(active.size() * static_cast<size_t>(c));
+  const Status status = ReadSymbolBlock(reader, layout, static_cast<uint32_t>(coded->size()),
+                                        -32768, 32767, coded->data());
+  if (!status.ok()) return error(status, " values: ");
+  const int32_t* src = coded->data();
+  for (uint32_t v : active) {
+    int16_t* dst = &grid->values[l][static_cast<size_t>(v) * c];
+    for (int k = 0; k < c; ++k) dst[k] = static_cast<int16_t>(*src++);
+  }
+  return Status::Ok();
+}
+
+Status ReadGridBox(ByteReader* reader, MotionGrid* grid) {
   for (int a = 0; a < 3; ++a) {
     if (!reader->ReadFiniteF32(&grid->box_min[a])) {
       return BitstreamError("grid: bad or missing box_min");
@@ -114,19 +159,47 @@ Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& c
       return BitstreamError("grid: box_scale missing, not finite or not positive");
     }
   }
+  return Status::Ok();
+}
+
+// Levels the configuration no longer has give their memory back.
+void ReleaseUnusedLevels(const GridConfig& config, MotionGrid* grid) {
+  for (int l = config.num_levels; l < kMaxGridLevels; ++l) {
+    grid->values[l] = Buffer<int16_t>(grid->values[l].get_allocator());
+    grid->nonzero_bricks[l] = Buffer<int32_t>(grid->nonzero_bricks[l].get_allocator());
+    grid->active_voxels[l] = Buffer<uint32_t>(grid->active_voxels[l].get_allocator());
+    grid->active_valid[l] = false;
+  }
+}
+
+}  // namespace
+
+Status ReadMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& config,
+                      MotionGrid* grid) {
+  M4D_RETURN_IF_ERROR(ReadGridBox(reader, grid));
   const HookedAllocator<int32_t> alloc(grid->values[0].get_allocator());
   Buffer<int32_t> flags(alloc);
   Buffer<int32_t> coded(alloc);
   for (int l = 0; l < config.num_levels; ++l) {
+    grid->active_valid[l] = false;
     M4D_RETURN_IF_ERROR(ReadLevel(reader, layout, l, config.resolution[l], config.channels[l],
                                   &flags, &coded, &grid->step[l], &grid->values[l],
                                   &grid->nonzero_bricks[l]));
   }
-  // Levels the configuration no longer has give their memory back.
-  for (int l = config.num_levels; l < kMaxGridLevels; ++l) {
-    grid->values[l] = Buffer<int16_t>(grid->values[l].get_allocator());
-    grid->nonzero_bricks[l] = Buffer<int32_t>(grid->nonzero_bricks[l].get_allocator());
+  ReleaseUnusedLevels(config, grid);
+  return Status::Ok();
+}
+
+Status ReadActiveMotionGrid(ByteReader* reader, RansLayout layout, const GridConfig& config,
+                            const float* positions, size_t count, MotionGrid* grid) {
+  M4D_RETURN_IF_ERROR(ReadGridBox(reader, grid));
+  Buffer<int32_t> coded(HookedAllocator<int32_t>(grid->values[0].get_allocator()));
+  for (int l = 0; l < config.num_levels; ++l) {
+    grid->nonzero_bricks[l].clear();  // the brick reader's state no longer describes values[l]
+    M4D_RETURN_IF_ERROR(ReadActiveLevel(reader, layout, l, config.resolution[l], config.channels[l],
+                                        positions, count, &coded, grid));
   }
+  ReleaseUnusedLevels(config, grid);
   return Status::Ok();
 }
 
