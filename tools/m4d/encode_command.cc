@@ -149,9 +149,15 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
       ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--appearance-min-gain", o.appearance_min_gain,
-                  "code a frame's colour change only when it raises the training views' PSNR by "
-                  "more than this many dB (negative: always)")
+                  "code a frame's colour change only when it raises the PSNR of the training views "
+                  "that did not train it (--appearance-check-every) by more than this many dB "
+                  "(negative: always)")
       ->check(m4d::Finite())
+      ->capture_default_str();
+  cmd->add_option("--appearance-check-every", o.motion.appearance_check_every,
+                  "every this many-th training view trains no colour change and judges it (0: "
+                  "every view trains it, and all judge it)")
+      ->check(m4d::AtLeast(0))
       ->capture_default_str();
   cmd->add_option("--appearance-min-views", o.appearance_min_views,
                   "train the colour change only with at least this many training views")

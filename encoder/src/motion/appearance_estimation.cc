@@ -7,6 +7,19 @@
 
 namespace m4d {
 
+std::vector<int> AppearanceCheckViews(int view_count, int every) {
+  std::vector<int> views;
+  for (int v = every - 1; every > 0 && v < view_count; v += every) views.push_back(v);
+  return views;
+}
+
+bool AnyAppearanceCheckView(const std::vector<int>& views, int every) {
+  for (int v : views) {
+    if (every > 0 && v % every == every - 1) return true;
+  }
+  return false;
+}
+
 AppearanceEstimation::AppearanceEstimation(size_t gaussians, float step, float learning_rate,
                                            float entropy_learning_rate)
     : n_(gaussians),

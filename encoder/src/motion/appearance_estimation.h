@@ -22,6 +22,11 @@
 
 namespace m4d {
 
+// The training views that train no colour change when every k-th one is held out for the
+// appearance decision: k-1, 2k-1, ... of `view_count` (none for k <= 0).
+std::vector<int> AppearanceCheckViews(int view_count, int every);
+bool AnyAppearanceCheckView(const std::vector<int>& views, int every);
+
 class AppearanceEstimation {
  public:
   // For a dynamic set of `gaussians`; values start at zero.

@@ -235,7 +235,7 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
       entropy_adam.Step(&entropy_.parameters(), entropy_grad);
     }
     for (int l = 0; l < config_.num_levels; ++l) grid_adam[l]->Step(&params.grid[l], grad.grid[l]);
-    if (appearance) {
+    if (appearance && !AnyAppearanceCheckView(batch_views, options.appearance_check_every)) {
       const double rate = options.rate_term ? options.rate_weight / kBitsPerRateUnit : 0.0;
       appearance->Step(gradients.dc.data(), rate, decay);
     }

@@ -59,6 +59,9 @@ struct MotionEstimationOptions {
   // per iteration (Adam), decaying like the grid's.
   float appearance_step = 1.0f / 64.0f;
   float appearance_learning_rate = 0.5f;
+  // Every k-th training view (k-1, 2k-1, ...) trains no colour change, so that the appearance
+  // decision can judge it on views it did not fit (AppearanceCheckViews; 0: every view trains).
+  int appearance_check_every = 4;
   double ssim_weight = kDefaultSsimWeight;
   int sh_degree = 3;
   EncodeContext context;

@@ -7,13 +7,18 @@
 namespace m4d {
 
 Status DecideAppearance(const AppearanceUpdate& appearance, double min_gain,
-                        TrainingPsnrMeter* meter, GaussianSet* moved,
-                        AppearanceDecision* decision) {
+                        const std::vector<int>& check_views, TrainingPsnrMeter* meter,
+                        GaussianSet* moved, AppearanceDecision* decision) {
   GaussianSet changed = *moved;
   ApplyAppearanceUpdate(appearance, &changed);
   double with = 0, without = 0;
-  M4D_RETURN_IF_ERROR(meter->Measure(changed, &with));
-  M4D_RETURN_IF_ERROR(meter->Measure(*moved, &without));
+  if (check_views.empty()) {
+    M4D_RETURN_IF_ERROR(meter->Measure(changed, &with));
+    M4D_RETURN_IF_ERROR(meter->Measure(*moved, &without));
+  } else {
+    M4D_RETURN_IF_ERROR(meter->MeasureViews(changed, check_views, &with));
+    M4D_RETURN_IF_ERROR(meter->MeasureViews(*moved, check_views, &without));
+  }
   decision->gain = with - without;
   decision->skipped = !(decision->gain > min_gain);
   if (!decision->skipped) *moved = std::move(changed);

@@ -1,8 +1,12 @@
 // The appearance mode decision: the colour change (APPEARANCE) that motion estimation trained
-// with an inter frame's motion is coded only if it raises the training views' mean PSNR of the
-// moved set by more than EncoderOptions::appearance_min_gain; otherwise its bytes buy nothing.
+// with an inter frame's motion is coded only if it raises the mean PSNR of the moved set by more
+// than EncoderOptions::appearance_min_gain on the training views that did not train it
+// (AppearanceCheckViews), or on all of them when each did; otherwise its bytes buy nothing or
+// fit only the views that trained it.
 #ifndef M4D_ENCODER_PIPELINE_APPEARANCE_DECISION_H_
 #define M4D_ENCODER_PIPELINE_APPEARANCE_DECISION_H_
+
+#include <vector>
 
 #include "encoder/src/pipeline/training_psnr_meter.h"
 #include "sdk/src/common/status.h"
@@ -12,14 +16,15 @@
 namespace m4d {
 
 struct AppearanceDecision {
-  double gain = 0;       // training PSNR of the moved set with the change minus without (dB)
+  double gain = 0;       // the judging views' PSNR with the change minus without (dB)
   bool skipped = false;  // not above the minimum gain: no APPEARANCE is coded
 };
 
 // Applies `appearance` to *moved unless the decision skips it; measures with the meter, which
-// has started the frame.
+// has started the frame, on `check_views` (empty: every view).
 Status DecideAppearance(const AppearanceUpdate& appearance, double min_gain,
-                        TrainingPsnrMeter* meter, GaussianSet* moved, AppearanceDecision* decision);
+                        const std::vector<int>& check_views, TrainingPsnrMeter* meter,
+                        GaussianSet* moved, AppearanceDecision* decision);
 
 }  // namespace m4d
 

@@ -10,6 +10,7 @@
 #include "encoder/src/layers/gaussian_set_writer.h"
 #include "encoder/src/layers/motion_grid_writer.h"
 #include "encoder/src/layers/same_gaussian_set.h"
+#include "encoder/src/motion/appearance_estimation.h"
 #include "encoder/src/pipeline/appearance_decision.h"
 #include "encoder/src/pipeline/coded_motion.h"
 #include "encoder/src/pipeline/combined_sets.h"
@@ -63,7 +64,8 @@ struct SequenceEncoder::InterFrame {
   FloatMotionGrid coded_grid;  // as written
   MotionGrid decoded_grid;     // as the decoder reads it
   AppearanceUpdate appearance;
-  GaussianSet moved;  // the decoder's moved dynamic set
+  std::vector<int> appearance_check_views;  // the views that did not train it
+  GaussianSet moved;                        // the decoder's moved dynamic set
   CompensationResult compensation;
   FrameReport report;
 };
@@ -344,6 +346,7 @@ Status SequenceEncoder::EstimateMotion(InterFrame* f) {
       FrameMotionOptions(options_, f->frame, f->length, !gop.mlp_trained, f->views.size());
   M4D_RETURN_IF_ERROR(estimator_->Estimate(f->views, gop.static_set, gop.dynamic_set, gop.box, o,
                                            &f->motion, gop.static_views.get()));
+  f->appearance_check_views = AppearanceCheckViews(f->views.size(), o.appearance_check_every);
   if (!gop.mlp_trained) {
     gop.mlp = estimator_->mlp();
     M4D_RETURN_IF_ERROR(DecodedMlp(gop.mlp, options_, &gop.decoded_mlp));
@@ -361,7 +364,8 @@ Status SequenceEncoder::DecideMotionModes(InterFrame* f) {
     f->appearance.values.assign(f->motion.appearance.begin(), f->motion.appearance.end());
     AppearanceDecision appearance;
     M4D_RETURN_IF_ERROR(DecideAppearance(f->appearance, options_.appearance_min_gain,
-                                         gop.meter.get(), &f->moved, &appearance));
+                                         f->appearance_check_views, gop.meter.get(), &f->moved,
+                                         &appearance));
     report.appearance_gain = appearance.gain;
     report.appearance_skipped = appearance.skipped;
   }

@@ -52,6 +52,7 @@ MotionEstimationOptions FrameMotionOptions(const EncoderOptions& options, int fr
   o.rate_term = options.ablation.rate_term && o.rate_term;
   o.rate_weight = MotionRateWeight(o.rate_weight, length, options.motion_rate_decay);
   if (view_count < options.appearance_min_views) o.appearance_step = 0.0f;
+  if (view_count < 2 * o.appearance_check_every) o.appearance_check_every = 0;
   o.sh_degree = options.sh_degree;
   o.context = options.context.Reseeded(options.context.seed + 7919u * static_cast<uint64_t>(frame));
   return o;

@@ -64,27 +64,49 @@ Status TrainingPsnrMeter::Measure(const GaussianSet& dynamic_set, double* psnr) 
       return Status::Ok();
     }
   }
+  double sum = 0;
+  for (int v = 0; v < views_->size(); ++v) {
+    double view_psnr = 0;
+    M4D_RETURN_IF_ERROR(ViewPsnr(dynamic_set, v, &view_psnr));
+    sum += view_psnr;
+  }
+  *psnr = sum / std::max(1, views_->size());
+  measured_.push_back({dynamic_set, *psnr});
+  return Status::Ok();
+}
+
+Status TrainingPsnrMeter::MeasureViews(const GaussianSet& dynamic_set,
+                                       const std::vector<int>& views, double* psnr) {
+  if (!views_) return Status(M4D_ERR_INVALID_ARG, "training PSNR: no frame started");
+  double sum = 0;
+  for (int v : views) {
+    if (v < 0 || v >= views_->size()) {
+      return Status(M4D_ERR_INVALID_ARG, "training PSNR: no such view");
+    }
+    double view_psnr = 0;
+    M4D_RETURN_IF_ERROR(ViewPsnr(dynamic_set, v, &view_psnr));
+    sum += view_psnr;
+  }
+  *psnr = sum / std::max<size_t>(1, views.size());
+  return Status::Ok();
+}
+
+Status TrainingPsnrMeter::ViewPsnr(const GaussianSet& dynamic_set, int v, double* psnr) {
   RenderSettings focused = settings_;
   focused.focus_layer = 1;
   focused.focus_margin = 0;  // the tiles around hold the static render, as measured
   const M4dGaussians layers[2] = {GaussianView(static_set_), GaussianView(dynamic_set)};
-  double sum = 0;
-  std::vector<double> errors;
-  for (int v = 0; v < views_->size(); ++v) {
-    const Camera& camera = views_->cameras[v];
-    const ProjectedSplats* projection = nullptr;
-    M4D_RETURN_IF_ERROR(static_views_->Projection(v, views_->cameras[v], &projection));
-    M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, projection, &context_));
-    const TileFocus& focus = context_.focus;
-    TileErrors(context_.color.data(), views_->images[v], focus.tiles_x, focus.tiles_y, &errors);
-    double error = 0;
-    for (size_t t = 0; t < errors.size(); ++t) {
-      error += focus.rendered(t) ? errors[t] : static_error_[v][t];
-    }
-    sum += PsnrFromSquaredError(error, views_->images[v].pixels.size());
+  const Camera& camera = views_->cameras[v];
+  const ProjectedSplats* projection = nullptr;
+  M4D_RETURN_IF_ERROR(static_views_->Projection(v, camera, &projection));
+  M4D_RETURN_IF_ERROR(RenderForward(camera, layers, 2, focused, nullptr, projection, &context_));
+  const TileFocus& focus = context_.focus;
+  TileErrors(context_.color.data(), views_->images[v], focus.tiles_x, focus.tiles_y, &errors_);
+  double error = 0;
+  for (size_t t = 0; t < errors_.size(); ++t) {
+    error += focus.rendered(t) ? errors_[t] : static_error_[v][t];
   }
-  *psnr = sum / std::max(1, views_->size());
-  measured_.push_back({dynamic_set, *psnr});
+  *psnr = PsnrFromSquaredError(error, views_->images[v].pixels.size());
   return Status::Ok();
 }
 

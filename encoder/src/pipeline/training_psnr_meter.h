@@ -35,13 +35,19 @@ class TrainingPsnrMeter {
   // Mean PSNR over the views of the static set with dynamic_set (dB).
   Status Measure(const GaussianSet& dynamic_set, double* psnr);
 
+  // The same over the views listed (indices into the frame's views; not kept).
+  Status MeasureViews(const GaussianSet& dynamic_set, const std::vector<int>& views, double* psnr);
+
  private:
+  Status ViewPsnr(const GaussianSet& dynamic_set, int view, double* psnr);
+
   const GaussianSet& static_set_;
   RenderSettings settings_;
   const TrainingViews* views_ = nullptr;
   RenderContext context_;
   FrozenLayerViews* static_views_;
   std::vector<std::vector<double>> static_error_;  // per view and tile: squared error
+  std::vector<double> errors_;                     // scratch: one render's, per tile
   struct Measured {
     GaussianSet set;
     double psnr;

@@ -150,6 +150,7 @@ nlohmann::json EncodeOptionsJson(const EncodeArguments& args) {
           {"motion_min_gain", o.motion_min_gain},
           {"appearance_step", o.motion.appearance_step},
           {"appearance_min_gain", o.appearance_min_gain},
+          {"appearance_check_every", o.motion.appearance_check_every},
           {"appearance_min_views", o.appearance_min_views},
           {"change_support", o.decoupling.thresholds.change_support},
           {"noise_gap", o.gop.noise_gap},
