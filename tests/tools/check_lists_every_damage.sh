@@ -17,14 +17,14 @@ flip() {
 }
 # Packet offsets of synth_sh3_three_gops.m4d (m4d_probe --json).
 flip $((67493 + 24 + 1000))   # KEYFRAME_DYNAMIC of frame 0, payload
-flip $((103811 + 24 + 1000))  # MOTION_GRID of frame 2, payload
-flip $((218887 + 8))          # MOTION_GRID of frame 5, header (frame_index)
+flip $((93689 + 24 + 10))     # MOTION_GRID of frame 2, payload (42 bytes: an empty grid)
+flip $((189030 + 8))          # MOTION_GRID of frame 5, header (frame_index)
 if "$check" "$damaged" > "$dir/check.txt"; then
   echo "a damaged stream passed"
   exit 1
 fi
 cat "$dir/check.txt"
 grep -q '^byte 67493: KEYFRAME_DYNAMIC (frame 0): payload CRC mismatch' "$dir/check.txt"
-grep -q '^byte 103811: MOTION_GRID (frame 2): payload CRC mismatch' "$dir/check.txt"
-grep -q '^byte 218887: packet header: checksum mismatch' "$dir/check.txt"
+grep -q '^byte 93689: MOTION_GRID (frame 2): payload CRC mismatch' "$dir/check.txt"
+grep -q '^byte 189030: packet header: checksum mismatch' "$dir/check.txt"
 test "$(grep -c '^byte ' "$dir/check.txt")" -eq 3
