@@ -89,6 +89,14 @@ void AddPruneShareOptions(CLI::App* command, const char* what, PruneShareArgumen
                    "may cost per halving of the keyframe's bytes")
       ->check(m4d::Within(0.0, 10.0))
       ->capture_default_str();
+  command
+      ->add_option("--keyframe-bits-max-loss", args->bits_max_loss_per_halving_db,
+                   "with an automatic prune share, the keyframes take the coarsest of the rate "
+                   "point's and the coarser points' keyframe bits that costs the same held-out "
+                   "views at most this many dB per halving of the keyframe's bytes (0: only bits "
+                   "that lose nothing)")
+      ->check(m4d::Within(0.0, 10.0))
+      ->capture_default_str();
 }
 
 void AddRateWeightOption(CLI::App* command, RateWeightArguments* args) {

@@ -7,6 +7,7 @@
 #define M4D_ENCODER_PIPELINE_ENCODER_OPTIONS_H_
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "encoder/src/compensation/compensation_candidates.h"
@@ -62,6 +63,10 @@ struct EncoderOptions {
   MlpConfig mlp;    // one hidden layer of 64
   float grid_steps[kMaxGridLevels] = {1.0f / 32, 1.0f / 32, 1.0f / 32, 1.0f / 32};
   GaussianQuantization quantization;  // keyframes
+  // What keyframe training is quantization-aware at, when not `quantization`: the rate point's
+  // bits once the keyframe bits selection took a coarser point's, which it judged on a model
+  // trained for neither (keyframe_bits_selection.h).
+  std::optional<GaussianQuantization> keyframe_trained_for;
   // lambda_k of keyframe training and retraining (keyframe_rate_term.h; 0: no rate term).
   double keyframe_rate_weight = 0.0;
   // Compensated Gaussians: a few hundred per frame, where every byte of each one counts.

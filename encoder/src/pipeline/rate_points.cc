@@ -113,6 +113,15 @@ void ApplyRatePoint(const RatePointSettings& point, EncoderOptions* options) {
   options->compensation_quantization = point.compensation;
 }
 
+std::vector<KeyframeBitsCandidate> KeyframeBitsCandidates(const std::string& name) {
+  const std::vector<RatePointSettings>& points = RatePoints();
+  std::vector<KeyframeBitsCandidate> candidates;
+  for (auto p = points.rbegin(); p != points.rend(); ++p) {
+    if (p->name == name || !candidates.empty()) candidates.push_back({p->name, p->keyframe});
+  }
+  return candidates;
+}
+
 std::string QuantizationName(const GaussianQuantization& q) {
   char name[64];
   std::snprintf(name, sizeof(name), "%d/%d/%d/%d/%d/%d", q.position_bits, q.log_scale_bits,

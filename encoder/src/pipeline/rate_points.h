@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "encoder/src/pipeline/encoder_options.h"
+#include "encoder/src/train/keyframe_bits_selection.h"
 #include "sdk/src/common/status.h"
 
 namespace m4d {
@@ -39,6 +40,10 @@ RatePointSettings RatePointForLambda(double lambda_2);
 
 // Sets the options that the rate point steers.
 void ApplyRatePoint(const RatePointSettings& point, EncoderOptions* options);
+
+// The keyframe quantizations the keyframe bits selection offers at rate point `name`: the
+// point's own, then each coarser point's, finest first (empty for an unknown name).
+std::vector<KeyframeBitsCandidate> KeyframeBitsCandidates(const std::string& name);
 
 // "p/s/r/o/c/sh": the bit depths of a quantization.
 std::string QuantizationName(const GaussianQuantization& q);

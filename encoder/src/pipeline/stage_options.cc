@@ -12,7 +12,7 @@ KeyframeTrainingOptions FirstKeyframeTraining(const EncoderOptions& options) {
   KeyframeTrainingOptions o = options.keyframe;
   o.sh_degree = options.sh_degree;
   o.context = options.context;
-  o.quantization = options.quantization;
+  o.quantization = options.keyframe_trained_for.value_or(options.quantization);
   o.rate_weight = options.keyframe_rate_weight;
   return o;
 }
@@ -31,7 +31,7 @@ KeyframeTrainingOptions RetrainingOptions(const EncoderOptions& options, int fra
   o.coarse_to_fine = CoarseToFineSchedule();  // it starts from a fitted model, not a coarse one
   o.quantization_aware_iterations =
       options.keyframe.quantization_aware_iterations > 0 ? options.retrain_iterations / 4 : 0;
-  o.quantization = options.quantization;
+  o.quantization = options.keyframe_trained_for.value_or(options.quantization);
   o.rate_weight = options.keyframe_rate_weight;
   o.start_sh_degree = options.sh_degree;
   o.context = options.context.Reseeded(options.context.seed + static_cast<uint64_t>(frame));

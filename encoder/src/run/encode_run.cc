@@ -319,6 +319,11 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
        choices.trains_first ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
       {"prune_share_selection",
        choices.trains_first ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
+      {"keyframe_bits_selection",
+       choices.trains_first
+           ? KeyframeBitsJson(EncodeKeyframeBits(args), args.prune.bits_max_loss_per_halving_db,
+                              choices.bits)
+           : nlohmann::json()},
       {"rate_weight_selection",
        choices.trains_first ? RateWeightJson(args.keyframe_rate, choices.rate) : nlohmann::json()}};
   if (chunked) {
@@ -328,7 +333,8 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
                             options.fps_num,
                             options.fps_den,
                             capture.frame_count,
-                            options.keyframe.sweep_share};
+                            options.keyframe.sweep_share,
+                            QuantizationName(options.quantization)};
     bool done = false;
     nlohmann::json chunk_table;
     M4D_RETURN_IF_ERROR(EncodeChunked(args, capture, options, settings, &progress, report, &stream,

@@ -5,6 +5,7 @@
 
 #include "encoder/src/capture/up_axis_estimate.h"
 #include "encoder/src/distributed/mpi_ranks.h"
+#include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
 #include "encoder/src/pipeline/stage_options.h"
 #include "encoder/src/ply/gaussian_ply.h"
@@ -35,6 +36,23 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
   return Status::Ok();
 }
 
+namespace {
+
+void ApplyKeyframeBits(const EncodeArguments& args, int chosen, EncoderOptions* options) {
+  if (chosen <= 0) return;
+  if (!options->keyframe_trained_for) options->keyframe_trained_for = options->quantization;
+  options->quantization = EncodeKeyframeBits(args)[static_cast<size_t>(chosen)].quantization;
+}
+
+}  // namespace
+
+std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& args) {
+  const bool given = !args.keyframe_bits.empty() || !args.keyframe_codebooks.empty();
+  const std::string point =
+      args.rate_point.empty() ? RatePointForLambda(args.lambda).name : args.rate_point;
+  return OfferedKeyframeBits(point, given);
+}
+
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices) {
   choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
@@ -47,7 +65,13 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
     options->keyframe.sweep_share = first.sweep_share;
     options->keyframe.importance_prune_share = first.importance_prune_share;
     choices->start = chosen.start;
-    choices->prune = chosen.prune;
+    choices->prune = std::move(chosen.prune);
+    if (status.ok()) {
+      status = ChooseKeyframeBits(EncodeKeyframeBits(args), args.prune.bits_max_loss_per_halving_db,
+                                  choices->prune.branch, &choices->bits);
+    }
+    choices->prune.branch = HeldOutModel();                  // not needed past here
+    ApplyKeyframeBits(args, choices->bits.chosen, options);  // before the rate weight's branches
   }
   if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
       args.keyframe_rate.automatic) {
@@ -59,12 +83,13 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
   }
   if (!AllRanksOk(status.ok()))
     return status.ok() ? Status(M4D_ERR_INVALID_ARG, "rank 0 failed") : status;
-  double chosen[3] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight,
-                      options->keyframe.sweep_share};
-  BroadcastDoubles(chosen, 3);
+  double chosen[4] = {options->keyframe.importance_prune_share, options->keyframe_rate_weight,
+                      options->keyframe.sweep_share, static_cast<double>(choices->bits.chosen)};
+  BroadcastDoubles(chosen, 4);
   options->keyframe.importance_prune_share = static_cast<float>(chosen[0]);
   options->keyframe_rate_weight = chosen[1];
   options->keyframe.sweep_share = static_cast<float>(chosen[2]);
+  ApplyKeyframeBits(args, static_cast<int>(chosen[3]), options);
   return Status::Ok();
 }
 

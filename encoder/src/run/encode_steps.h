@@ -10,6 +10,7 @@
 #include "encoder/src/pipeline/encoder_options.h"
 #include "encoder/src/pipeline/sequence_encoder.h"
 #include "encoder/src/run/encode_run.h"
+#include "encoder/src/run/keyframe_bits_choice.h"
 #include "encoder/src/run/prune_share_arguments.h"
 #include "encoder/src/run/rate_weight_arguments.h"
 #include "encoder/src/train/gaussian_model.h"
@@ -30,11 +31,16 @@ struct AutomaticChoices {
   bool trains_first = false;
   StartSizeChoice start;
   PruneShareChoice prune;
+  KeyframeBitsChoice bits;
   RateWeightChoice rate;
 };
 
-// The automatic start share, prune share and keyframe rate weight: they need the first
-// keyframe's training, a given keyframe has none. Under MPI rank 0 chooses for every rank.
+// The keyframe bits the encode's arguments offer (keyframe_bits_choice.h).
+std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& args);
+
+// The automatic start share, prune share, keyframe bits (keyframe_bits_choice.h) and keyframe
+// rate weight: they need the first keyframe's training, a given keyframe has none. Under MPI rank 0
+// chooses for every rank.
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices);
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "encoder/src/capture/capture.h"
+#include "encoder/src/train/keyframe_bits_selection.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/prune_share_selection.h"
 #include "encoder/src/train/start_size_selection.h"
@@ -20,6 +21,8 @@ struct PruneShareArguments {
   double share = -1;        // < 0: chosen per capture ("auto")
   double sweep_share = -1;  // < 0: chosen per capture ("auto")
   double max_loss_per_halving_db = PruneShareSelectionOptions().max_loss_per_halving_db;
+  // The keyframe bits' own bound on the same views (keyframe_bits_selection.h).
+  double bits_max_loss_per_halving_db = kKeyframeBitsMaxLossPerHalvingDb;
   bool Automatic() const { return share < 0; }
   bool StartAutomatic() const { return sweep_share < 0; }
 };

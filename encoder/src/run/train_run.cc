@@ -13,6 +13,7 @@
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/ply/gaussian_ply.h"
 #include "encoder/src/run/capture_arguments.h"
+#include "encoder/src/run/keyframe_bits_choice.h"
 #include "encoder/src/run/prune_share_arguments.h"
 #include "encoder/src/run/quality_curve.h"
 #include "encoder/src/run/rate_weight_arguments.h"
@@ -127,6 +128,15 @@ Status RunTrain(const TrainArguments& args) {
   options.context.seed = args.seed;
   KeyframeShareChoice choice;
   M4D_RETURN_IF_ERROR(ResolveKeyframeShares(capture, args.frame, args.prune, &options, &choice));
+  const std::vector<KeyframeBitsCandidate> offered =
+      OfferedKeyframeBits(args.rate_point, !args.keyframe_bits.empty());
+  KeyframeBitsChoice bits;
+  M4D_RETURN_IF_ERROR(ChooseKeyframeBits(offered, args.prune.bits_max_loss_per_halving_db,
+                                         choice.prune.branch, &bits));
+  // Trained for the rate point's bits, coded at those chosen (as the encoder does).
+  const GaussianQuantization coded = bits.chosen > 0
+                                         ? offered[static_cast<size_t>(bits.chosen)].quantization
+                                         : options.quantization;
   RateWeightArguments rate = args.rate;
   rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;
   RateWeightChoice rate_choice;
@@ -172,8 +182,7 @@ Status RunTrain(const TrainArguments& args) {
                 test_quality.mean_ssim);
     std::printf("%-28s %.2f dB (a gain and offset per camera and channel fitted to its image)\n",
                 "held-out, colour fitted", test_quality.mean_colour_fitted_psnr);
-    M4D_RETURN_IF_ERROR(
-        PrintCodedQuality(model, args.sh_degree, options.quantization, test, settings));
+    M4D_RETURN_IF_ERROR(PrintCodedQuality(model, args.sh_degree, coded, test, settings));
     if (!args.render.empty()) {
       Image rendered;
       RenderContext context;

@@ -194,6 +194,8 @@ class KeyframeTrainer {
 
   // Quality on `views` at the active SH degree and the training background.
   Status Evaluate(const TrainingViews& views, EvaluationResult* result);
+  // The renders Evaluate makes: the active SH degree, the training background and threads.
+  RenderSettings Settings() const;
 
   int iteration() const { return iteration_; }
   int active_sh_degree() const { return active_sh_degree_; }
@@ -227,7 +229,6 @@ class KeyframeTrainer {
 
  private:
   int NextView();
-  RenderSettings Settings() const;
   Status ForwardBackward(int view);
   Status PruneUnimportant();
   void RecordTenth();

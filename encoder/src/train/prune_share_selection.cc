@@ -83,6 +83,9 @@ Status TrainPruneShareTrunk(const TrainingViews& views, const GaussianModel& ini
   KeyframeTrainer unpruned = trunk->trainer;
   M4D_RETURN_IF_ERROR(RunBranch(run, trunk->validation, progress, &unpruned, &trunk->unpruned));
   trunk->unpruned.share = 0.0f;
+  trunk->unpruned_branch.validation = trunk->validation;
+  trunk->unpruned_branch.settings = unpruned.Settings();
+  trunk->unpruned_branch.model = unpruned.TakeModel();
   return Status::Ok();
 }
 
@@ -91,6 +94,7 @@ Status SelectPruneShare(const PruneShareTrunk& trunk, const PruneShareSelectionO
   *choice = PruneShareChoice();
   choice->validation_cameras = trunk.validation_cameras;
   choice->unpruned = trunk.unpruned;
+  choice->branch = trunk.unpruned_branch;
   for (float share : selection.shares) {
     KeyframeTrainer branch = trunk.trainer;
     branch.SetImportancePruneShare(share);
@@ -101,6 +105,8 @@ Status SelectPruneShare(const PruneShareTrunk& trunk, const PruneShareSelectionO
     choice->trials.push_back(trial);
     if (choice->unpruned.psnr - trial.psnr <= AllowedLoss(choice->unpruned, trial, selection)) {
       choice->share = share;
+      choice->branch.settings = branch.Settings();
+      choice->branch.model = branch.TakeModel();
       break;
     }
   }

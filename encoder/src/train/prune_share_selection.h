@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "encoder/src/train/gaussian_model.h"
+#include "encoder/src/train/keyframe_bits_selection.h"
 #include "encoder/src/train/keyframe_stage.h"
 #include "encoder/src/train/keyframe_trainer.h"
 #include "encoder/src/train/selection_branch.h"
@@ -60,6 +61,9 @@ struct PruneShareChoice {
                                         // too few views, share 0)
   PruneShareTrial unpruned;
   std::vector<PruneShareTrial> trials;  // the candidates tried, in order
+  // The branch of the share chosen, for the keyframe bits to be judged on the same views
+  // (keyframe_bits_selection.h); empty when no view was held out.
+  HeldOutModel branch;
 };
 
 // What `pruned` may lose against `unpruned` (dB): the bound per halving times the halvings of
@@ -87,6 +91,7 @@ struct PruneShareTrunk {
   TrainingViews validation;             // the held-out views
   std::vector<int> validation_cameras;  // their capture indices
   PruneShareTrial unpruned;
+  HeldOutModel unpruned_branch;  // that branch's model, with the held-out views
 };
 
 // Trains `trunk` from `initial` (built without the held-out views, as HeldOutStart builds it)
