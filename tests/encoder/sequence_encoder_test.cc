@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "encoder/src/capture/capture.h"
@@ -358,13 +359,16 @@ TEST(SequenceEncoderTest, MotionIsCodedOnlyWhereItGains) {
 }
 
 // The colour change trained with the motion is a mode decision of its own: coded (an
-// APPEARANCE packet) exactly when its measured gain passes the bound.
+// APPEARANCE packet) exactly when its measured gain passes the bound, which its bytes raise.
 TEST(SequenceEncoderTest, AppearanceIsCodedOnlyWhereItGains) {
   constexpr int kCodedFrames = 3;
   Capture capture = MakeCapture();
-  for (double min_gain : {-1.0, 1e9}) {
+  const std::pair<double, double> bounds[] = {{-1.0, 0.5}, {1e9, 0.0}, {0.0, 1e9}};
+  for (const auto& [min_gain, per_doubling] : bounds) {
+    const bool coded = min_gain < 0;
     EncoderOptions o = SmallOptions();
     o.appearance_min_gain = min_gain;
+    o.appearance_gain_per_doubling = per_doubling;
     o.appearance_min_views = 1;           // the capture has 5 training views
     o.motion.appearance_check_every = 2;  // views 1 and 3 judge it, the others train it
     o.gop.adaptive = false;
@@ -379,7 +383,7 @@ TEST(SequenceEncoderTest, AppearanceIsCodedOnlyWhereItGains) {
       const FrameReport& frame = report.frames[f];
       EXPECT_EQ(frame.hash, decoded[f]) << f;
       EXPECT_NE(frame.appearance_gain, 0.0) << f;  // measured either way
-      EXPECT_EQ(frame.appearance_skipped, min_gain > 0) << f;
+      EXPECT_EQ(frame.appearance_skipped, !coded) << f;
       EXPECT_EQ(frame.bytes.by_type[M4D_PACKET_APPEARANCE] > 0, !frame.appearance_skipped) << f;
     }
   }

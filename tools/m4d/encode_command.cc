@@ -154,6 +154,11 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "(negative: always)")
       ->check(m4d::Finite())
       ->capture_default_str();
+  cmd->add_option("--appearance-gain-per-doubling", o.appearance_gain_per_doubling,
+                  "and by more than this many dB per doubling of the frame's bytes that it causes "
+                  "(0: any gain above --appearance-min-gain)")
+      ->check(m4d::AtLeast(0))
+      ->capture_default_str();
   cmd->add_option("--appearance-check-every", o.motion.appearance_check_every,
                   "every this many-th training view trains no colour change and judges it (0: "
                   "every view trains it, and all judge it)")

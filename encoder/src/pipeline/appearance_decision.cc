@@ -1,10 +1,20 @@
 #include "encoder/src/pipeline/appearance_decision.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "sdk/src/decode/appearance_application.h"
 
 namespace m4d {
+
+double RequiredAppearanceGain(double min_gain, double gain_per_doubling, size_t frame_bytes,
+                              size_t appearance_bytes) {
+  if (min_gain < 0 || frame_bytes == 0) return min_gain;
+  const double doublings = std::log2(static_cast<double>(frame_bytes + appearance_bytes) /
+                                     static_cast<double>(frame_bytes));
+  return std::max(min_gain, gain_per_doubling * doublings);
+}
 
 Status DecideAppearance(const AppearanceUpdate& appearance, double min_gain,
                         const std::vector<int>& check_views, TrainingPsnrMeter* meter,

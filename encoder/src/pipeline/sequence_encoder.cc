@@ -355,6 +355,20 @@ Status SequenceEncoder::EstimateMotion(InterFrame* f) {
   return Status::Ok();
 }
 
+Status SequenceEncoder::RequiredGain(const InterFrame& f, double* required) const {
+  // The set the grid is read at: the keyframe's until the keyframe is written with this frame.
+  const GaussianSet& read_by =
+      gop_->keyframe_pending ? gop_->dynamic_set : writer_->moved_dynamic_set();
+  std::vector<uint8_t> grid, appearance;
+  M4D_RETURN_IF_ERROR(writer_->MotionPayload(f.coded_grid, read_by, &grid));
+  M4D_RETURN_IF_ERROR(
+      writer_->AppearancePayload(f.appearance.step, f.motion.appearance, &appearance));
+  *required =
+      RequiredAppearanceGain(options_.appearance_min_gain, options_.appearance_gain_per_doubling,
+                             grid.size(), appearance.size());
+  return Status::Ok();
+}
+
 // The colour change is decided first, so that the motion is judged with what it would code.
 Status SequenceEncoder::DecideMotionModes(InterFrame* f) {
   Gop& gop = *gop_;
@@ -362,10 +376,11 @@ Status SequenceEncoder::DecideMotionModes(InterFrame* f) {
   if (!f->motion.appearance.empty()) {
     f->appearance.step = options_.motion.appearance_step;
     f->appearance.values.assign(f->motion.appearance.begin(), f->motion.appearance.end());
+    double required = 0;
+    M4D_RETURN_IF_ERROR(RequiredGain(*f, &required));
     AppearanceDecision appearance;
-    M4D_RETURN_IF_ERROR(DecideAppearance(f->appearance, options_.appearance_min_gain,
-                                         f->appearance_check_views, gop.meter.get(), &f->moved,
-                                         &appearance));
+    M4D_RETURN_IF_ERROR(DecideAppearance(f->appearance, required, f->appearance_check_views,
+                                         gop.meter.get(), &f->moved, &appearance));
     report.appearance_gain = appearance.gain;
     report.appearance_skipped = appearance.skipped;
   }

@@ -96,6 +96,8 @@ class SequenceEncoder {
   Status Move(InterFrame* f);
   Status EstimateMotion(InterFrame* f);
   Status DecideMotionModes(InterFrame* f);
+  // The gain the frame's colour change must exceed (RequiredAppearanceGain).
+  Status RequiredGain(const InterFrame& f, double* required) const;
   // The frame's compensation: trained, then the compensation decision.
   Status Compensate(InterFrame* f);
   Status TrainFrameCompensation(InterFrame* f);

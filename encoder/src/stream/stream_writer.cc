@@ -119,16 +119,21 @@ Status StreamWriter::WriteMotion(const FloatMotionGrid& grid) {
     return Status(M4D_ERR_INVALID_ARG, "writer: motion needs an open GOP and a finished frame");
   }
   std::vector<uint8_t> payload;
-  ByteWriter writer(&payload);
-  const SequenceHeader& sequence = options_.sequence;
-  const GaussianSet& moved = moved_dynamic_set();  // frame t-1's, before this motion
-  M4D_RETURN_IF_ERROR(sequence.codes_active_voxels()
-                          ? WriteActiveMotionGrid(sequence.grid, grid, moved.positions.data(),
-                                                  moved.size(), sequence.rans_layout(), &writer)
-                          : WriteMotionGrid(sequence.grid, grid, sequence.rans_layout(), &writer));
+  M4D_RETURN_IF_ERROR(MotionPayload(grid, moved_dynamic_set(), &payload));  // frame t-1's
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_MOTION_GRID, false, payload));
   motion_written_ = true;
   return Status::Ok();
+}
+
+Status StreamWriter::MotionPayload(const FloatMotionGrid& grid, const GaussianSet& read_by,
+                                   std::vector<uint8_t>* payload) const {
+  payload->clear();
+  ByteWriter writer(payload);
+  const SequenceHeader& sequence = options_.sequence;
+  return sequence.codes_active_voxels()
+             ? WriteActiveMotionGrid(sequence.grid, grid, read_by.positions.data(), read_by.size(),
+                                     sequence.rans_layout(), &writer)
+             : WriteMotionGrid(sequence.grid, grid, sequence.rans_layout(), &writer);
 }
 
 Status StreamWriter::WriteAppearance(float step, const std::vector<int32_t>& values) {
@@ -139,12 +144,17 @@ Status StreamWriter::WriteAppearance(float step, const std::vector<int32_t>& val
     return Status(M4D_ERR_INVALID_ARG, "writer: appearance values do not match the dynamic set");
   }
   std::vector<uint8_t> payload;
-  ByteWriter writer(&payload);
-  M4D_RETURN_IF_ERROR(
-      WriteAppearanceUpdate(step, values, options_.sequence.rans_layout(), &writer));
+  M4D_RETURN_IF_ERROR(AppearancePayload(step, values, &payload));
   M4D_RETURN_IF_ERROR(Emit(M4D_PACKET_APPEARANCE, false, payload));
   appearance_written_ = true;
   return Status::Ok();
+}
+
+Status StreamWriter::AppearancePayload(float step, const std::vector<int32_t>& values,
+                                       std::vector<uint8_t>* payload) const {
+  payload->clear();
+  ByteWriter writer(payload);
+  return WriteAppearanceUpdate(step, values, options_.sequence.rans_layout(), &writer);
 }
 
 Status StreamWriter::WriteCompensation(const std::vector<uint8_t>& removed,

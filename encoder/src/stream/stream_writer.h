@@ -63,10 +63,17 @@ class StreamWriter {
   // set after this motion, which the compensation refers to.
   Status WriteMotion(const FloatMotionGrid& grid);
   const GaussianSet& moved_dynamic_set() const { return *decoder_.dynamic_set(); }
+  // The payload WriteMotion writes for a dynamic set `read_by` before the packet, for decisions
+  // that weigh an inter frame's bytes before its GOP's keyframe is written.
+  Status MotionPayload(const FloatMotionGrid& grid, const GaussianSet& read_by,
+                       std::vector<uint8_t>* payload) const;
 
   // Optional packet after the motion (bitstream 0.3): the colour change of the moved dynamic
   // set, `values` 3 per Gaussian of moved_dynamic_set(), which it changes.
   Status WriteAppearance(float step, const std::vector<int32_t>& values);
+  // The payload WriteAppearance would write.
+  Status AppearancePayload(float step, const std::vector<int32_t>& values,
+                           std::vector<uint8_t>* payload) const;
 
   // Last packet of an inter frame: `removed` holds one flag per Gaussian of
   // moved_dynamic_set() (non-zero = remove), `added` the compensated Gaussians.
