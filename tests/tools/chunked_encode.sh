@@ -5,7 +5,9 @@
 # SDK decodes to the encoder's hashes and the stream checker passes. A run stopped after one chunk writes no stream and keeps
 # the chunk; the same command then codes only the other one, and the stream is byte for byte
 # the uninterrupted run's. A chunk whose process died between its stream and its report, or
-# whose report is damaged, is coded again. A checkpoint directory of other settings is refused. With MPIEXEC, two ranks
+# whose report is damaged, is coded again. A checkpoint directory of other settings is refused.
+# With a given first keyframe the second chunk still trains its own, so the automatic keyframe
+# choices are made (recorded in the report), not left unresolved. With MPIEXEC, two ranks
 # code one chunk each into the same stream (so the same decode, frame by frame), and a killed
 # rank's chunk is coded again on resume.
 set -eu
@@ -53,6 +55,11 @@ if "$m4d" encode "$dir/scene" -o "$dir/other.m4d" --checkpoint-dir "$dir/resumed
 fi
 grep -q 'other settings' "$dir/other.txt"
 test ! -e "$dir/other.m4d"
+
+"$m4d" train "$dir/scene" --iterations 60 --max-gaussians 3000 --ply "$dir/kf.ply" \
+  > /dev/null 2>&1
+"$m4d" encode "$dir/scene" -o "$dir/given.m4d" $opts --keyframe-ply "$dir/kf.ply" > /dev/null
+grep -q '"prune_share_selection": {' "$dir/given.m4d.json"
 
 [ -n "$mpiexec" ] || exit 0
 # Open MPI refuses root unless told; CI containers run as root.

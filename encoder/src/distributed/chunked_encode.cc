@@ -144,6 +144,12 @@ Status JoinChunks(const std::string& dir, const std::vector<Chunk>& chunks,
   return Status::Ok();
 }
 
+// Frames of `options`' range that the capture holds (at most 0 when none).
+int FramesToCode(const Capture& capture, const EncoderOptions& options) {
+  const int left = capture.frame_count - options.first_frame;
+  return options.frame_count > 0 ? std::min(options.frame_count, left) : left;
+}
+
 }  // namespace
 
 std::vector<Chunk> PlanChunks(int first, int frames, int chunk_frames) {
@@ -154,20 +160,24 @@ std::vector<Chunk> PlanChunks(int first, int frames, int chunk_frames) {
   return chunks;
 }
 
+std::vector<Chunk> PlanCaptureChunks(const Capture& capture, const EncoderOptions& options,
+                                     int chunk_frames) {
+  const int frames = FramesToCode(capture, options);
+  if (frames <= 0) return {};
+  // Under MPI without a chunk length: one chunk per rank.
+  const int ranks = CurrentRanks().size;
+  const int length = chunk_frames > 0 ? chunk_frames : (frames + ranks - 1) / ranks;
+  return PlanChunks(options.first_frame, frames, length);
+}
+
 Status RunChunkedEncode(const Capture& capture, const EncoderOptions& options,
                         const ChunkedEncodeOptions& chunked, const EncoderCallbacks& callbacks,
                         ChunkedEncodeResult* result) {
   *result = ChunkedEncodeResult();
   const Ranks& ranks = CurrentRanks();
-  const int first = options.first_frame;
-  const int frames = options.frame_count > 0
-                         ? std::min(options.frame_count, capture.frame_count - first)
-                         : capture.frame_count - first;
+  const int frames = FramesToCode(capture, options);
   if (frames <= 0) return Status(M4D_ERR_INVALID_ARG, "encoder: first frame beyond the capture");
-  // Under MPI without a chunk length: one chunk per rank.
-  const int length =
-      chunked.chunk_frames > 0 ? chunked.chunk_frames : (frames + ranks.size - 1) / ranks.size;
-  const std::vector<Chunk> chunks = PlanChunks(first, frames, length);
+  const std::vector<Chunk> chunks = PlanCaptureChunks(capture, options, chunked.chunk_frames);
   result->chunks = chunks.size();
   const std::string& dir = chunked.checkpoint_dir;
   Status status = ranks.rank == 0 ? CheckSettings(dir, chunked.settings) : Status::Ok();

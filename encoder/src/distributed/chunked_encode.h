@@ -33,6 +33,11 @@ struct Chunk {
 // Frames [first, first + frames) in chunks of chunk_frames (the last may be shorter).
 std::vector<Chunk> PlanChunks(int first, int frames, int chunk_frames);
 
+// The chunks of `options`' frame range in `capture`: of chunk_frames, or under MPI without a
+// length one per rank. Empty when the range holds no frame.
+std::vector<Chunk> PlanCaptureChunks(const Capture& capture, const EncoderOptions& options,
+                                     int chunk_frames);
+
 struct ChunkedEncodeOptions {
   int chunk_frames = 0;
   std::string checkpoint_dir;

@@ -316,16 +316,17 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   nlohmann::json extra = {
       {"options", EncodeOptionsJson(args)},
       {"start_size_selection",
-       choices.trains_first ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
+       choices.trains_keyframe ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
       {"prune_share_selection",
-       choices.trains_first ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
+       choices.trains_keyframe ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
       {"keyframe_bits_selection",
-       choices.trains_first
+       choices.trains_keyframe
            ? KeyframeBitsJson(EncodeKeyframeBits(args), args.prune.bits_max_loss_per_halving_db,
                               choices.bits)
            : nlohmann::json()},
-      {"rate_weight_selection",
-       choices.trains_first ? RateWeightJson(args.keyframe_rate, choices.rate) : nlohmann::json()}};
+      {"rate_weight_selection", choices.trains_keyframe
+                                    ? RateWeightJson(args.keyframe_rate, choices.rate)
+                                    : nlohmann::json()}};
   if (chunked) {
     nlohmann::json settings = extra["options"];
     settings["resolved"] = {options.keyframe.importance_prune_share,

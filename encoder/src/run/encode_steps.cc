@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "encoder/src/capture/up_axis_estimate.h"
+#include "encoder/src/distributed/chunked_encode.h"
 #include "encoder/src/distributed/mpi_ranks.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
@@ -38,6 +39,16 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
 
 namespace {
 
+// Whether a keyframe is trained from scratch: the first unless given (a keyframe source's
+// frames are given too), and with a given first keyframe each later chunk's.
+bool TrainsKeyframe(const EncodeArguments& args, const Capture& capture,
+                    const EncoderOptions& options) {
+  if (args.keyframe_source) return false;
+  if (args.keyframe_ply.empty()) return true;
+  const bool chunked = args.chunk_frames > 0 || CurrentRanks().size > 1;
+  return chunked && PlanCaptureChunks(capture, options, args.chunk_frames).size() > 1;
+}
+
 void ApplyKeyframeBits(const EncodeArguments& args, int chosen, EncoderOptions* options) {
   if (chosen <= 0) return;
   if (!options->keyframe_trained_for) options->keyframe_trained_for = options->quantization;
@@ -55,9 +66,9 @@ std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& arg
 
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices) {
-  choices->trains_first = args.keyframe_ply.empty() && !args.keyframe_source;
+  choices->trains_keyframe = TrainsKeyframe(args, capture, *options);
   Status status = Status::Ok();
-  if (CurrentRanks().rank == 0 && choices->trains_first &&
+  if (CurrentRanks().rank == 0 && choices->trains_keyframe &&
       (args.prune.Automatic() || args.prune.StartAutomatic())) {
     KeyframeTrainingOptions first = FirstKeyframeTraining(*options);
     KeyframeShareChoice chosen;
@@ -73,7 +84,7 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
     choices->prune.branch = HeldOutModel();                  // not needed past here
     ApplyKeyframeBits(args, choices->bits.chosen, options);  // before the rate weight's branches
   }
-  if (status.ok() && CurrentRanks().rank == 0 && choices->trains_first &&
+  if (status.ok() && CurrentRanks().rank == 0 && choices->trains_keyframe &&
       args.keyframe_rate.automatic) {
     RateWeightArguments rate = args.keyframe_rate;
     rate.max_loss_per_halving_db = args.prune.max_loss_per_halving_db;

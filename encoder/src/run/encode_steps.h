@@ -26,9 +26,10 @@ Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOp
 // the content by it).
 Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options);
 
-// What the automatic keyframe settings chose (when the first keyframe is trained here).
+// What the automatic keyframe settings chose (when this encode trains a keyframe from scratch:
+// the first, unless given, or a later chunk's).
 struct AutomaticChoices {
-  bool trains_first = false;
+  bool trains_keyframe = false;
   StartSizeChoice start;
   PruneShareChoice prune;
   KeyframeBitsChoice bits;
@@ -39,7 +40,8 @@ struct AutomaticChoices {
 std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& args);
 
 // The automatic start share, prune share, keyframe bits (keyframe_bits_choice.h) and keyframe
-// rate weight: they need the first keyframe's training, a given keyframe has none. Under MPI rank 0
+// rate weight, chosen by training on the first frame when any keyframe is trained from scratch:
+// with a given first keyframe, only chunks after the first train theirs. Under MPI rank 0
 // chooses for every rank.
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices);

@@ -49,7 +49,7 @@ void ShareFirstChoices(const EncodeArguments& args, const AutomaticChoices& choi
     o.fps_den = first.fps_den;
     o.up_axis = first.up_axis;
     o.keyframe.importance_prune_share = first.keyframe.importance_prune_share;
-    if (args.keyframe_rate.automatic && choices.trains_first) {
+    if (args.keyframe_rate.automatic && choices.trains_keyframe) {
       o.keyframe_rate_weight = first.keyframe_rate_weight;
     }
   }
