@@ -85,6 +85,7 @@ streams=(
   "synth_edge_cases|--gops 2 --frames-per-gop 3 --static 200 --dynamic 240 --sh-degree 1 --seed 41 --edge-cases"
   "synth_v07_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 42 --codebook 16 --bitstream-minor 7"
   "synth_v08_sh1|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 47 --codebook 16 --attribute-coding adaptive --bitstream-minor 8"
+  "synth_v10_own_dc|--gops 2 --frames-per-gop 3 --static 600 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 49 --attribute-coding adaptive --bitstream-minor 10"
   "synth_v09_bricks|--gops 2 --frames-per-gop 3 --static 300 --dynamic 200 --sh-degree 1 --grid 8,4,16,2 --motion-fraction 0.3 --seed 48 --codebook 16 --attribute-coding adaptive --bitstream-minor 9"
   "synth_sh1_adaptive|--gops 2 --frames-per-gop 3 --static 3000 --dynamic 300 --sh-degree 1 --motion-fraction 0.002 --seed 43 --codebook 48 --attribute-coding adaptive"
   "synth_sh3_adaptive_bits_12|--gops 1 --frames-per-gop 3 --static 800 --dynamic 200 --sh-degree 3 --motion-fraction 0.002 --seed 44 --bits 12 --attribute-coding adaptive"

@@ -362,7 +362,10 @@ Packet AdaptiveWideSet() {
     }
     fields[f].components = components[f];
     fields[f].width = field_bits[f];
-    fields[f].own_context = f != 1;  // log scales and SH DC (spec 5.7)
+    // Log scales on their own previous component, SH DC on the previous channel (spec 5.7).
+    fields[f].context = f == 0   ? m4d::AdaptiveContext::kNeighbourAndOwn
+                        : f == 2 ? m4d::AdaptiveContext::kPreviousChannel
+                                 : m4d::AdaptiveContext::kNeighbour;
     fields[f].limit = 1u << field_bits[f];
     fields[f].q = q[f].data();
   }

@@ -135,10 +135,10 @@ GaussianSet RegionalSet(size_t n, int sh_degree, uint32_t seed) {
   return set;
 }
 
-Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out) {
+Status Read(const std::vector<uint8_t>& bytes, int sh_degree, GaussianSet* out,
+            const GaussianSetSyntax& syntax = GaussianSetSyntax()) {
   ByteReader r(bytes.data(), bytes.size());
-  const Status status =
-      ReadGaussianSet(&r, sh_degree, GaussianSetSyntax(), kMaxGaussiansPerSet, out);
+  const Status status = ReadGaussianSet(&r, sh_degree, syntax, kMaxGaussiansPerSet, out);
   if (status.ok() && r.remaining() != 0) return BitstreamError("bytes left after the set");
   return status;
 }
@@ -216,6 +216,36 @@ TEST(AdaptiveAttributes, TheWriterTakesTheSmallerCoding) {
   EXPECT_EQ(WriteSet(tiny, narrow).size(),
             std::min(WriteSet(tiny, Coded(narrow, AttributeCoding::kAdaptive)).size(),
                      WriteSet(tiny, Coded(narrow, AttributeCoding::kDraco)).size()));
+}
+
+// Colours of one brightness each, unrelated between neighbours: a Gaussian's channels say what
+// its other channels are, its neighbour does not. From 0.11 SH DC codes on the previous channel
+// (spec 5.7), and both versions decode to the same values.
+TEST(AdaptiveAttributes, ShDcChannelsAreCodedOnThePreviousChannelFromVersion0_11) {
+  GaussianSet set = RegionalSet(20000, 0, 14);
+  testing::UniformFloats uniform(15);
+  for (size_t i = 0; i < set.size(); ++i) {
+    const float grey = uniform(-1.5f, 1.5f);
+    for (size_t r = 0; r < 3; ++r) set.sh[3 * i + r] = grey + uniform(-0.05f, 0.05f);
+  }
+  GaussianQuantization q = Coded(GaussianQuantization(), AttributeCoding::kAdaptive);
+  GaussianQuantization v10 = q;
+  v10.syntax.sh_dc_channel_context = false;
+  GaussianSetSyntax v10_syntax;
+  v10_syntax.sh_dc_channel_context = false;
+  const std::vector<uint8_t> channel = WriteSet(set, q), own = WriteSet(set, v10);
+  GaussianSet a, b;
+  ASSERT_TRUE(Read(channel, 0, &a).ok());
+  ASSERT_TRUE(Read(own, 0, &b, v10_syntax).ok());
+  EXPECT_EQ(a.sh, b.sh);
+  EXPECT_EQ(a.log_scales, b.log_scales);
+  // The same values in 2 bits fewer per Gaussian (2.5 measured): the previous channel's top 5
+  // bits narrow a later channel to 16 of its 256 levels, the own context's top 3 to 64.
+  EXPECT_LT(channel.size() + 2 * set.size() / 8, own.size());
+  // Read with the other version's context, the payload decodes to other colours or fails.
+  GaussianSet c;
+  const Status crossed = Read(channel, 0, &c, v10_syntax);
+  EXPECT_TRUE(!crossed.ok() || c.sh != a.sh);
 }
 
 // Higher SH of degree 3 at 5 bits: 24 + 30 + 2 + 8 + 24 + 225 decisions per Gaussian, above

@@ -148,6 +148,7 @@ struct Walk {
     int coded_before_rotation = 0;
     uint32_t rotation_bits = 0, position_bits = 0;
     int widths[6] = {0, 0, 0, 0, 0, 0};  // of the values adaptive_attributes() would code
+    bool dc_codebook = false;
     for (int g = 0; g < (sh_degree > 0 ? 6 : 5); ++g) {
       const uint32_t bits = r->U8(), per_component = r->U8();
       widths[g] = static_cast<int>(bits);
@@ -170,6 +171,7 @@ struct Walk {
       if (version_minor >= 6) {
         const uint32_t size = Codebook(r, g, static_cast<uint32_t>(components[g]));
         if (size > 0 && bits > 0) widths[g] = IndexWidth(size);
+        dc_codebook = dc_codebook || (g == 4 && size > 0);
       }
     }
     if (octree && position_bits > 0) {
@@ -179,7 +181,7 @@ struct Walk {
       if (flag) --coded_before_rotation;  // positions are not a Draco attribute
       octree_used = flag != 0;
     }
-    if (version_minor >= 8 && AdaptiveAttributes(r, widths)) {
+    if (version_minor >= 8 && AdaptiveAttributes(r, widths, dc_codebook)) {
       // Draco holds the positions alone, when they are neither constant nor in the octree.
       const bool draco_present = position_bits > 0 && !octree_used;
       Add(draco_present ? "adaptive,draco=positions" : "adaptive,draco=absent");
@@ -224,10 +226,13 @@ struct Walk {
   }
 
   // 5.4, 5.7 (0.8): attribute_coding and, when 1, adaptive_attributes(). Returns the flag.
-  bool AdaptiveAttributes(Reader* r, const int* widths) {
+  bool AdaptiveAttributes(Reader* r, const int* widths, bool dc_codebook) {
     const uint32_t flag = r->U8();
     Add(flag ? "attribute_coding=1" : "attribute_coding=0");
     if (!flag) return false;
+    // 5.7: scalar SH DC on the previous channel from 0.11, before on the neighbour and its own.
+    if (widths[4] > 0 && !dc_codebook)
+      Add(version_minor >= 11 ? "adaptive_dc=channel" : "adaptive_dc=own");
     for (int g = 1; g < 6; ++g) {
       if (widths[g] > 8) Add("adaptive_bypass_bits");  // 5.7: the bits below the tree's 8
       if (widths[g] > 0 && widths[g] < 3) Add("adaptive_width<3");

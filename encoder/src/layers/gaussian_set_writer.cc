@@ -517,7 +517,8 @@ Status PreferOctree(size_t n, const GroupPlan& position, const GaussianQuantizat
 
 // The fields of adaptive_attributes() (version 0.8, spec 5.7): every coded group but the
 // positions.
-std::vector<AdaptiveField> AdaptiveFields(const std::vector<GroupPlan*>& coded) {
+std::vector<AdaptiveField> AdaptiveFields(const std::vector<GroupPlan*>& coded,
+                                          const GaussianSetSyntax& syntax) {
   std::vector<AdaptiveField> fields;
   for (GroupPlan* plan : coded) {
     if (plan->group == kGroupPosition) continue;
@@ -526,7 +527,7 @@ std::vector<AdaptiveField> AdaptiveFields(const std::vector<GroupPlan*>& coded) 
     const bool codebook = plan->codebook_size > 0;
     field.width = codebook ? CodebookIndexWidth(plan->codebook_size) : plan->bits;
     field.limit = codebook ? plan->codebook_size : 1u << plan->bits;
-    field.own_context = AdaptiveOwnContext(plan->group, codebook) && !plan->rotation_index;
+    field.context = AdaptiveContextOf(plan->group, codebook, plan->rotation_index, syntax);
     field.q = plan->q.data();
     fields.push_back(field);
   }
@@ -558,7 +559,7 @@ Status PreferAdaptive(size_t n, const GaussianQuantization& quantization, bool o
                       const std::vector<GroupPlan*>& coded, draco::EncoderBuffer* draco_buffer,
                       std::vector<uint8_t>* adaptive) {
   if (quantization.attribute_coding == AttributeCoding::kDraco) return Status::Ok();
-  const std::vector<AdaptiveField> fields = AdaptiveFields(coded);
+  const std::vector<AdaptiveField> fields = AdaptiveFields(coded, quantization.syntax);
   if (quantization.attribute_coding == AttributeCoding::kSmaller &&
       BinsPerGaussian(fields) > kMaxAdaptiveBinsPerGaussian) {
     return Status::Ok();

@@ -52,7 +52,7 @@ extern "C" {
 #define M4D_VERSION_MINOR 9
 #define M4D_VERSION_PATCH 0
 #define M4D_BITSTREAM_VERSION_MAJOR 0
-#define M4D_BITSTREAM_VERSION_MINOR 10 /* decodes 0.2 to 0.9 streams too */
+#define M4D_BITSTREAM_VERSION_MINOR 11 /* decodes 0.2 to 0.10 streams too */
 
 /* Error codes. Every failing call returns one of these (always negative). */
 #define M4D_OK 0

@@ -16,8 +16,8 @@ namespace m4d {
 // The oldest bitstream minor version this decoder implements (0.2 is 0.3 without dependent
 // keyframes, 0.3 is 0.4 without interleaved rANS states, 0.4 is 0.5 without smallest-three
 // rotations, 0.5 is 0.6 without codebooks, 0.6 is 0.7 with positions in Draco, 0.7 is 0.8
-// without adaptive attributes, 0.8 is 0.9 without up_axis, 0.9 is 0.10 with brick-coded grids;
-// spec 10).
+// without adaptive attributes, 0.8 is 0.9 without up_axis, 0.9 is 0.10 with brick-coded grids,
+// 0.10 is 0.11 with SH DC conditioned on the neighbour; spec 10).
 constexpr int kOldestBitstreamMinor = 2;
 
 // up_axis (spec 4.1): 0 not stated, 1..6 the world's up is +x, -x, +y, -y, +z, -z.
@@ -62,6 +62,7 @@ struct SequenceHeader {
     syntax.codebooks = version_minor >= 6;
     syntax.octree_positions = version_minor >= 7;
     syntax.adaptive_attributes = version_minor >= 8;
+    syntax.sh_dc_channel_context = version_minor >= 11;
     syntax.rans_layout = rans_layout();
     return syntax;
   }

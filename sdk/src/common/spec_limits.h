@@ -34,12 +34,15 @@ constexpr uint32_t kRansInterleaveMinCount = 4096;
 // From version 0.8, adaptive binary range coding (spec 5.7): 12-bit probabilities moved by
 // 1/32 of their distance after each bit, a range kept at or above 2^24; attribute values code
 // their kAdaptiveTreeBits most significant bits with a context's bit tree, the rest as bypass
-// bits, the context being the top kAdaptiveContextBits of two neighbouring values.
+// bits, the context being the top kAdaptiveContextBits of two neighbouring values. From 0.11,
+// an SH DC channel after the first is conditioned on the top kAdaptiveChannelBits of the
+// channel before it.
 constexpr int kRangeProbabilityBits = 12;
 constexpr int kRangeAdaptShift = 5;
 constexpr uint32_t kRangeTop = 1u << 24;
 constexpr int kAdaptiveTreeBits = 8;
 constexpr int kAdaptiveContextBits = 3;
+constexpr int kAdaptiveChannelBits = 5;
 constexpr int32_t kMaxSymbolMagnitude = 1 << 23;
 constexpr int kMaxAttributeBits = 24;
 constexpr int kMlpOutputs = 7;

@@ -25,8 +25,19 @@ int CodebookIndexWidth(uint32_t codebook_size) {
   return width;
 }
 
+static_assert(kAdaptiveContextBits <= kAdaptiveChannelBits,
+              "a channel context's first component uses the neighbour's contexts");
+
 uint32_t AdaptiveAttributeModel::Contexts(const AdaptiveField& field) {
-  return field.own_context ? 1u << (2 * kAdaptiveContextBits) : 1u << kAdaptiveContextBits;
+  switch (field.context) {
+    case AdaptiveContext::kNeighbourAndOwn:
+      return 1u << (2 * kAdaptiveContextBits);
+    case AdaptiveContext::kPreviousChannel:
+      return 1u << kAdaptiveChannelBits;
+    case AdaptiveContext::kNeighbour:
+      break;
+  }
+  return 1u << kAdaptiveContextBits;
 }
 
 AdaptiveAttributeModel::AdaptiveAttributeModel(const AdaptiveField* fields, int num_fields) {

@@ -1,7 +1,7 @@
 // adaptive_attributes() (bitstream-spec 5.7, version 0.8): the attribute groups of a Gaussian
 // set coded with adaptive binary range coding, each value conditioned on its neighbour in
-// coding order. The traversal and the context model are shared by the decoder and the
-// encoder, which differ only in their coder.
+// coding order or on the Gaussian's previous component. The traversal and the context model are
+// shared by the decoder and the encoder, which differ only in their coder.
 #ifndef M4D_SDK_LAYERS_ADAPTIVE_ATTRIBUTES_H_
 #define M4D_SDK_LAYERS_ADAPTIVE_ATTRIBUTES_H_
 
@@ -16,14 +16,21 @@
 
 namespace m4d {
 
+// What a field's component r is conditioned on (spec 5.7).
+enum class AdaptiveContext {
+  kNeighbour,        // the previous Gaussian's component r
+  kNeighbourAndOwn,  // that, and for r > 0 this Gaussian's component r - 1
+  kPreviousChannel,  // r = 0: the previous Gaussian's; r > 0: this Gaussian's r - 1 only (0.11)
+};
+
 // One field of adaptive_attributes(): a group's quantized values or codebook indices, or the
 // rotation index of smallest-three rotations.
 struct AdaptiveField {
-  int components = 0;        // values per Gaussian
-  int width = 0;             // bits per value, 1..24
-  bool own_context = false;  // component r > 0 is also conditioned on component r - 1
-  uint32_t limit = 0;        // every value is below this: 2^width, or the codebook size
-  uint32_t* q = nullptr;     // [i * components + r], i in coding order
+  int components = 0;  // values per Gaussian
+  int width = 0;       // bits per value, 1..24
+  AdaptiveContext context = AdaptiveContext::kNeighbour;
+  uint32_t limit = 0;     // every value is below this: 2^width, or the codebook size
+  uint32_t* q = nullptr;  // [i * components + r], i in coding order
 };
 
 // Bits of a codebook index: the smallest w with 2^w >= size (size >= 2).
@@ -40,7 +47,7 @@ class AdaptiveAttributeModel {
                            (static_cast<size_t>(component) * l.contexts + context) * l.tree_size];
   }
   // Contexts of one component of a field: 8 (the neighbour's top bits), times 8 with an own
-  // context.
+  // context, 32 (the previous channel's top bits) for a channel context.
   static uint32_t Contexts(const AdaptiveField& field);
 
  private:
@@ -70,25 +77,31 @@ inline uint32_t CodeAdaptiveValue(Coder* coder, BitProbability* tree, int width,
   return v;
 }
 
+// The shift that leaves a value of `width` bits its top `bits` bits.
+inline int TopBitsShift(int width, int bits) { return width < bits ? 0 : width - bits; }
+
 // Codes the fields one after the other; within a field the Gaussians in coding order, each
-// Gaussian's components in order. Component r of Gaussian i is coded with the tree of context
-// (top bits of component r of Gaussian i - 1, top bits of component r - 1 of Gaussian i). False
-// when a value reaches its field's limit.
+// Gaussian's components in order. Component r of Gaussian i is coded with the tree of its
+// field's context (AdaptiveContext): top bits of component r of Gaussian i - 1, and of
+// component r - 1 of Gaussian i. False when a value reaches its field's limit.
 template <typename Coder>
 bool CodeAdaptiveAttributes(Coder* coder, const AdaptiveField* fields, int num_fields,
                             uint32_t count, AdaptiveAttributeModel* model) {
   for (int f = 0; f < num_fields; ++f) {
     const AdaptiveField& field = fields[f];
-    const int top = field.width < kAdaptiveContextBits ? field.width : kAdaptiveContextBits;
-    const int shift = field.width - top;
-    const uint32_t own_contexts = field.own_context ? 1u << kAdaptiveContextBits : 1u;
+    const int shift = TopBitsShift(field.width, kAdaptiveContextBits);
+    const int channel_shift = TopBitsShift(field.width, kAdaptiveChannelBits);
+    const bool own = field.context == AdaptiveContext::kNeighbourAndOwn;
+    const bool channel = field.context == AdaptiveContext::kPreviousChannel;
+    const uint32_t own_contexts = own ? 1u << kAdaptiveContextBits : 1u;
     const size_t c = static_cast<size_t>(field.components);
     for (uint32_t i = 0; i < count; ++i) {
       uint32_t* q = field.q + i * c;
       const uint32_t* previous = i > 0 ? q - c : nullptr;  // the previous Gaussian's values
       for (size_t r = 0; r < c; ++r) {
         uint32_t context = previous != nullptr ? (previous[r] >> shift) * own_contexts : 0;
-        if (field.own_context && r > 0) context += q[r - 1] >> shift;
+        if (own && r > 0) context += q[r - 1] >> shift;
+        if (channel && r > 0) context = q[r - 1] >> channel_shift;
         BitProbability* tree = model->Tree(f, static_cast<int>(r), context);
         q[r] = CodeAdaptiveValue(coder, tree, field.width, q[r]);
         if (q[r] >= field.limit) return false;

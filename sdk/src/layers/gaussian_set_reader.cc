@@ -467,7 +467,8 @@ Status ReadCodebook(ByteReader* reader, RansLayout layout, const std::string& wh
 
 // adaptive_attributes() (version 0.8, spec 5.7): every group but the positions with bits, and
 // the rotation index, decoded into the groups' q.
-Status ReadAdaptiveGroups(ByteReader* reader, uint32_t count, GroupCoding* groups, int num_groups) {
+Status ReadAdaptiveGroups(ByteReader* reader, const GaussianSetSyntax& syntax, uint32_t count,
+                          GroupCoding* groups, int num_groups) {
   AdaptiveField fields[kNumGaussianGroups + 1];
   int num_fields = 0;
   for (int k = 0; k < num_groups; ++k) {
@@ -477,7 +478,7 @@ Status ReadAdaptiveGroups(ByteReader* reader, uint32_t count, GroupCoding* group
     field.components = AttributeComponents(g);
     field.width = g.codebook_size > 0 ? CodebookIndexWidth(g.codebook_size) : g.bits;
     field.limit = AttributeLimit(g);
-    field.own_context = AdaptiveOwnContext(g.group, g.codebook_size > 0) && !g.rotation_index;
+    field.context = AdaptiveContextOf(g.group, g.codebook_size > 0, g.rotation_index, syntax);
     g.q.resize(static_cast<size_t>(count) * static_cast<size_t>(field.components));
     field.q = g.q.data();
   }
@@ -486,8 +487,12 @@ Status ReadAdaptiveGroups(ByteReader* reader, uint32_t count, GroupCoding* group
 
 }  // namespace
 
-bool AdaptiveOwnContext(int group, bool codebook) {
-  return !codebook && (group == kGroupLogScale || group == kGroupRotation || group == kGroupShDc);
+AdaptiveContext AdaptiveContextOf(int group, bool codebook, bool rotation_index,
+                                  const GaussianSetSyntax& syntax) {
+  if (codebook || rotation_index) return AdaptiveContext::kNeighbour;
+  if (group == kGroupShDc && syntax.sh_dc_channel_context) return AdaptiveContext::kPreviousChannel;
+  const bool own = group == kGroupLogScale || group == kGroupRotation || group == kGroupShDc;
+  return own ? AdaptiveContext::kNeighbourAndOwn : AdaptiveContext::kNeighbour;
 }
 
 bool GroupAllowsCodebook(int group) {
@@ -585,7 +590,7 @@ Status ReadGaussianSet(ByteReader* reader, int sh_degree, const GaussianSetSynta
   if (syntax.adaptive_attributes && (!reader->ReadU8(&adaptive) || adaptive > 1)) {
     return BitstreamError("gaussian_set: attribute_coding truncated or not 0 or 1");
   }
-  if (adaptive) M4D_RETURN_IF_ERROR(ReadAdaptiveGroups(reader, count, groups, num_groups));
+  if (adaptive) M4D_RETURN_IF_ERROR(ReadAdaptiveGroups(reader, syntax, count, groups, num_groups));
 
   const GroupCoding* coded[kNumGaussianGroups + 1];
   const int num_coded = DracoGroups(groups, num_groups, coded);

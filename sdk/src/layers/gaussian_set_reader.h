@@ -7,6 +7,7 @@
 
 #include "sdk/src/common/byte_reader.h"
 #include "sdk/src/common/status.h"
+#include "sdk/src/layers/adaptive_attributes.h"
 #include "sdk/src/layers/gaussian_set.h"
 #include "sdk/src/layers/gaussian_set_syntax.h"
 
@@ -34,9 +35,11 @@ int CodedGroupComponents(int group, int sh_degree, RotationCoding rotation);
 // higher SH.
 bool GroupAllowsCodebook(int group);
 
-// Whether adaptive_attributes() (version 0.8, spec 5.7) conditions a group's component r > 0 on
-// component r - 1 of the same Gaussian: scalar log scales, rotations and SH DC.
-bool AdaptiveOwnContext(int group, bool codebook);
+// What adaptive_attributes() (version 0.8, spec 5.7) conditions a group's values on: scalar log
+// scales and rotations also on the Gaussian's previous component, so does SH DC (from 0.11 on
+// that component alone); codebook indices and the rotation index on the neighbour's only.
+AdaptiveContext AdaptiveContextOf(int group, bool codebook, bool rotation_index,
+                                  const GaussianSetSyntax& syntax);
 
 // Reads one gaussian_set() from `reader`, with the stream version's syntax. `out` must
 // have been constructed (with the caller's allocator); its sh_degree is set to `sh_degree` and

@@ -13,8 +13,9 @@ struct GaussianSetSyntax {
   RotationCoding rotation = RotationCoding::kSmallestThree;  // smallest-three from 0.5 on
   bool codebooks = true;                                     // codebook_size fields from 0.6 on
   RansLayout rans_layout = RansLayout::kInterleaved;         // of codebooks and the octree
-  bool octree_positions = true;     // positions as octree_positions() from 0.7 on, else in Draco
-  bool adaptive_attributes = true;  // attribute_coding and adaptive_attributes() from 0.8 on
+  bool octree_positions = true;       // positions as octree_positions() from 0.7 on, else in Draco
+  bool adaptive_attributes = true;    // attribute_coding and adaptive_attributes() from 0.8 on
+  bool sh_dc_channel_context = true;  // SH DC channels on the previous channel from 0.11 on
 };
 
 }  // namespace m4d
