@@ -65,5 +65,28 @@ TEST(GopPolicyTest, DependentWithinTheRandomAccessInterval) {
   EXPECT_FALSE(GopPolicy(o).Dependent(1));
 }
 
+TEST(GopPolicyTest, MayRestartWhereAnyRuleCanEndAGop) {
+  EncoderOptions o;
+  o.gop.min_length = 2;
+  EXPECT_FALSE(GopPolicy(o).MayRestart(0, 2));  // the adaptive rule needs a third frame
+  EXPECT_TRUE(GopPolicy(o).MayRestart(0, 3));
+  o.gop.adaptive = false;
+  o.gop.max_length = 300;
+  EXPECT_FALSE(GopPolicy(o).MayRestart(0, 300));
+  EXPECT_TRUE(GopPolicy(o).MayRestart(0, 301));
+  o.gop.fixed_length = 4;
+  EXPECT_FALSE(GopPolicy(o).MayRestart(0, 4));
+  EXPECT_TRUE(GopPolicy(o).MayRestart(0, 5));
+  o.gop.adaptive = true;  // imposed starts replace every rule
+  o.gop.starts = {10, 20};
+  EXPECT_FALSE(GopPolicy(o).MayRestart(10, 10));
+  EXPECT_TRUE(GopPolicy(o).MayRestart(10, 11));
+  EXPECT_FALSE(GopPolicy(o).MayRestart(20, 50));
+  o.gop.starts.clear();
+  o.independent_frames = true;
+  EXPECT_TRUE(GopPolicy(o).MayRestart(0, 2));
+  EXPECT_FALSE(GopPolicy(o).MayRestart(0, 1));
+}
+
 }  // namespace
 }  // namespace m4d

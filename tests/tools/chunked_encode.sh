@@ -6,8 +6,9 @@
 # the chunk; the same command then codes only the other one, and the stream is byte for byte
 # the uninterrupted run's. A chunk whose process died between its stream and its report, or
 # whose report is damaged, is coded again. A checkpoint directory of other settings is refused.
-# With a given first keyframe the second chunk still trains its own, so the automatic keyframe
-# choices are made (recorded in the report), not left unresolved. With MPIEXEC, two ranks
+# With a given first keyframe the second chunk still trains its own, and in one process a later
+# GOP retrains its own, so the automatic keyframe choices are made (recorded in the report), not
+# left unresolved. With MPIEXEC, two ranks
 # code one chunk each into the same stream (so the same decode, frame by frame), and a killed
 # rank's chunk is coded again on resume.
 set -eu
@@ -60,6 +61,11 @@ test ! -e "$dir/other.m4d"
   > /dev/null 2>&1
 "$m4d" encode "$dir/scene" -o "$dir/given.m4d" $opts --keyframe-ply "$dir/kf.ply" > /dev/null
 grep -q '"prune_share_selection": {' "$dir/given.m4d.json"
+# In one process too: the GOP at frame 2 retrains its keyframe with the chosen share.
+"$m4d" encode "$dir/scene" -o "$dir/given_one.m4d" $(echo "$opts" | sed 's/--chunk-frames 2//') \
+  --fixed-gop 2 --keyframe-ply "$dir/kf.ply" > "$dir/given_one.txt"
+grep -q 'later keyframes may be trained' "$dir/given_one.txt"
+grep -q '"prune_share_selection": {' "$dir/given_one.m4d.json"
 
 [ -n "$mpiexec" ] || exit 0
 # Open MPI refuses root unless told; CI containers run as root.

@@ -64,8 +64,10 @@ void AddEncoderOptions(CLI::App* cmd, EncodeArguments* a) {
                   "the last N iterations of the first keyframe's training render it as coded "
                   "(default: a quarter of the run; retraining: a quarter of its run; 0: none)")
       ->check(m4d::AtLeast(0));
-  AddPruneShareOptions(cmd, "keyframes and retraining; with --keyframe-ply 0 unless given",
-                       &a->prune);
+  AddPruneShareOptions(
+      cmd,
+      "keyframes and retraining; with --keyframe-ply chosen too when later GOPs retrain theirs",
+      &a->prune);
   cmd->add_option("--prune-below", a->prune_below,
                   "when densification ends (keyframes and retraining), remove the Gaussians "
                   "whose blending weight summed over the views is below this many pixels "

@@ -27,6 +27,18 @@ bool GopPolicy::Restarts(int length, double ratio, double psnr, double reference
          (ratio > gop_.threshold || (gop_.max_psnr_drop > 0 && drop > gop_.max_psnr_drop));
 }
 
+bool GopPolicy::MayRestart(int first, int frames) const {
+  if (independent_frames_) return frames > 1;
+  const std::vector<int>& starts = gop_.starts;
+  if (!starts.empty()) {
+    return std::upper_bound(starts.begin(), starts.end(), first) !=
+           std::lower_bound(starts.begin(), starts.end(), first + frames);
+  }
+  const bool fixed = !gop_.adaptive && gop_.fixed_length > 0;
+  return (gop_.adaptive && frames > gop_.min_length) || frames > gop_.max_length ||
+         (fixed && frames > gop_.fixed_length);
+}
+
 bool GopPolicy::Dependent(int frame) const {
   const double seconds = gop_.random_access_seconds;
   if (seconds <= 0.0 || independent_frames_) return false;

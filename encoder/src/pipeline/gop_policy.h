@@ -24,6 +24,11 @@ class GopPolicy {
   // r_t (`ratio`) exceeds tau_GOP, or its training PSNR fell more than
   // GopOptions::max_psnr_drop below `reference` (the keyframe's, less its noise gap).
   bool Restarts(int length, double ratio, double psnr, double reference) const;
+  // Whether any GOP but the first may start among `frames` frames from `first`: one of
+  // GopOptions::starts lies among them, a fixed or maximum length ends inside them, or the
+  // adaptive rule may end a GOP. Its keyframe is then trained, so the automatic keyframe
+  // choices are needed even when the first keyframe is given.
+  bool MayRestart(int first, int frames) const;
   // Whether a GOP starting at `frame` keeps the static set (GopOptions::random_access_seconds).
   bool Dependent(int frame) const;
   // A GOP starts at `frame`; a random-access one restarts the interval Dependent measures.

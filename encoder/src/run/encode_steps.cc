@@ -6,6 +6,7 @@
 #include "encoder/src/capture/up_axis_estimate.h"
 #include "encoder/src/distributed/chunked_encode.h"
 #include "encoder/src/distributed/mpi_ranks.h"
+#include "encoder/src/pipeline/gop_policy.h"
 #include "encoder/src/pipeline/rate_points.h"
 #include "encoder/src/pipeline/sequence_report_output.h"
 #include "encoder/src/pipeline/stage_options.h"
@@ -39,14 +40,21 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
 
 namespace {
 
-// Whether a keyframe is trained from scratch: the first unless given (a keyframe source's
-// frames are given too), and with a given first keyframe each later chunk's.
+// Whether a keyframe is trained: the first unless given (a keyframe source's frames are given
+// too); with a given first keyframe, each later chunk's and every retrained GOP keyframe.
+// Retraining takes the automatic prune share, bits and rate weight, so they are chosen then too.
 bool TrainsKeyframe(const EncodeArguments& args, const Capture& capture,
                     const EncoderOptions& options) {
   if (args.keyframe_source) return false;
   if (args.keyframe_ply.empty()) return true;
   const bool chunked = args.chunk_frames > 0 || CurrentRanks().size > 1;
-  return chunked && PlanCaptureChunks(capture, options, args.chunk_frames).size() > 1;
+  if (chunked) {
+    const std::vector<Chunk> chunks = PlanCaptureChunks(capture, options, args.chunk_frames);
+    if (chunks.size() > 1) return true;
+  }
+  const int left = capture.frame_count - options.first_frame;
+  const int frames = options.frame_count > 0 ? std::min(options.frame_count, left) : left;
+  return GopPolicy(options).MayRestart(options.first_frame, frames);
 }
 
 void ApplyKeyframeBits(const EncodeArguments& args, int chosen, EncoderOptions* options) {
@@ -68,8 +76,16 @@ Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& captu
                                EncoderOptions* options, AutomaticChoices* choices) {
   choices->trains_keyframe = TrainsKeyframe(args, capture, *options);
   Status status = Status::Ok();
-  if (CurrentRanks().rank == 0 && choices->trains_keyframe &&
-      (args.prune.Automatic() || args.prune.StartAutomatic())) {
+  const bool automatic_shares = args.prune.Automatic() || args.prune.StartAutomatic();
+  if (CurrentRanks().rank == 0 && choices->trains_keyframe && !args.keyframe_ply.empty() &&
+      (automatic_shares || args.keyframe_rate.automatic)) {
+    std::printf(
+        "%s is given, but later keyframes may be trained: the automatic keyframe "
+        "choices are made on frame %d (give --prune-share and --keyframe-rate-weight "
+        "to skip them)\n",
+        args.keyframe_ply.c_str(), options->first_frame);
+  }
+  if (CurrentRanks().rank == 0 && choices->trains_keyframe && automatic_shares) {
     KeyframeTrainingOptions first = FirstKeyframeTraining(*options);
     KeyframeShareChoice chosen;
     status = ResolveKeyframeShares(capture, options->first_frame, args.prune, &first, &chosen);

@@ -26,8 +26,8 @@ Status ChooseFrameRate(const std::string& fps, const Capture& capture, EncoderOp
 // the content by it).
 Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOptions* options);
 
-// What the automatic keyframe settings chose (when this encode trains a keyframe from scratch:
-// the first, unless given, or a later chunk's).
+// What the automatic keyframe settings chose (when this encode trains a keyframe: the first,
+// unless given, a later chunk's, or a GOP's retrained one).
 struct AutomaticChoices {
   bool trains_keyframe = false;
   StartSizeChoice start;
@@ -40,9 +40,9 @@ struct AutomaticChoices {
 std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& args);
 
 // The automatic start share, prune share, keyframe bits (keyframe_bits_choice.h) and keyframe
-// rate weight, chosen by training on the first frame when any keyframe is trained from scratch:
-// with a given first keyframe, only chunks after the first train theirs. Under MPI rank 0
-// chooses for every rank.
+// rate weight, chosen by training on the first frame when any keyframe is trained: with a given
+// first keyframe, chunks after the first train theirs and GOPs after the first retrain theirs.
+// Under MPI rank 0 chooses for every rank.
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices);
 

@@ -165,6 +165,17 @@ const std::vector<double>& PaperLambdas() {
   return kLambdas;
 }
 
+// Chooses the automatic shares once, on the first frame, for every rate point alike.
+Status ResolveSweepShares(const Capture& capture, EncodeArguments* args) {
+  KeyframeTrainingOptions options = SweepKeyframeTraining(*args);
+  KeyframeShareChoice choice;
+  M4D_RETURN_IF_ERROR(
+      ResolveKeyframeShares(capture, args->encoder.first_frame, args->prune, &options, &choice));
+  args->prune.share = options.importance_prune_share;
+  args->prune.sweep_share = options.sweep_share;
+  return Status::Ok();
+}
+
 Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
   if (args->keyframe_rate.automatic) {
     return Status(M4D_ERR_INVALID_ARG,
@@ -172,25 +183,25 @@ Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
                   "points; give the weight (m4d train DATASET --keyframe-rate-weight auto prints "
                   "the one it chooses)");
   }
-  if (!args->keyframe_ply.empty()) return Status::Ok();
+  const bool automatic = args->prune.Automatic() || args->prune.StartAutomatic();
+  Capture capture;
+  if (!args->keyframe_ply.empty()) {
+    // A given keyframe still has its GOPs' keyframes retrained with the shares.
+    if (!automatic) return Status::Ok();
+    M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
+    return ResolveSweepShares(capture, args);
+  }
   const std::string path = (std::filesystem::path(out.dir) / "keyframe.ply").string();
   // Automatic shares are chosen once, with the keyframe, and kept beside it for --reuse.
   const std::string share_path = path + ".prune_share";
-  const bool automatic = args->prune.Automatic() || args->prune.StartAutomatic();
   if (out.reuse && std::filesystem::exists(path) &&
       (!automatic || std::filesystem::exists(share_path))) {
     if (automatic) {
       M4D_RETURN_IF_ERROR(ReadPruneShare(share_path, &args->prune.share, &args->prune.sweep_share));
     }
   } else {
-    Capture capture;
     M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
-    KeyframeTrainingOptions options = SweepKeyframeTraining(*args);
-    KeyframeShareChoice choice;
-    M4D_RETURN_IF_ERROR(
-        ResolveKeyframeShares(capture, args->encoder.first_frame, args->prune, &options, &choice));
-    args->prune.share = options.importance_prune_share;
-    args->prune.sweep_share = options.sweep_share;
+    M4D_RETURN_IF_ERROR(ResolveSweepShares(capture, args));
     M4D_RETURN_IF_ERROR(TrainToPly(capture, args->encoder.first_frame, *args, path));
     if (automatic) {
       const std::string text =
