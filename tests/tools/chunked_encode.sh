@@ -61,11 +61,13 @@ test ! -e "$dir/other.m4d"
   > /dev/null 2>&1
 "$m4d" encode "$dir/scene" -o "$dir/given.m4d" $opts --keyframe-ply "$dir/kf.ply" > /dev/null
 grep -q '"prune_share_selection": {' "$dir/given.m4d.json"
-# In one process too: the GOP at frame 2 retrains its keyframe with the chosen share.
+# In one process too: the GOP at frame 2 retrains its keyframe with the chosen prune share (no
+# keyframe is trained from scratch, so no start share is chosen).
 "$m4d" encode "$dir/scene" -o "$dir/given_one.m4d" $(echo "$opts" | sed 's/--chunk-frames 2//') \
   --fixed-gop 2 --keyframe-ply "$dir/kf.ply" > "$dir/given_one.txt"
-grep -q 'later keyframes may be trained' "$dir/given_one.txt"
+grep -q 'later GOPs may retrain' "$dir/given_one.txt"
 grep -q '"prune_share_selection": {' "$dir/given_one.m4d.json"
+grep -q '"start_size_selection": null' "$dir/given_one.m4d.json"
 
 [ -n "$mpiexec" ] || exit 0
 # Open MPI refuses root unless told; CI containers run as root.

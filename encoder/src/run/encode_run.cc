@@ -316,7 +316,7 @@ Status RunEncode(const EncodeArguments& args, SequenceReport* report) {
   nlohmann::json extra = {
       {"options", EncodeOptionsJson(args)},
       {"start_size_selection",
-       choices.trains_keyframe ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
+       choices.from_scratch ? StartSizeJson(args.prune, choices.start) : nlohmann::json()},
       {"prune_share_selection",
        choices.trains_keyframe ? PruneShareJson(args.prune, choices.prune) : nlohmann::json()},
       {"keyframe_bits_selection",

@@ -40,18 +40,21 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
 
 namespace {
 
-// Whether a keyframe is trained: the first unless given (a keyframe source's frames are given
-// too); with a given first keyframe, each later chunk's and every retrained GOP keyframe.
-// Retraining takes the automatic prune share, bits and rate weight, so they are chosen then too.
-bool TrainsKeyframe(const EncodeArguments& args, const Capture& capture,
-                    const EncoderOptions& options) {
+// Whether a keyframe is trained from scratch: the first unless given (a keyframe source's
+// frames are given too), and with a given first keyframe each later chunk's.
+bool TrainsFromScratch(const EncodeArguments& args, const Capture& capture,
+                       const EncoderOptions& options) {
   if (args.keyframe_source) return false;
   if (args.keyframe_ply.empty()) return true;
   const bool chunked = args.chunk_frames > 0 || CurrentRanks().size > 1;
-  if (chunked) {
-    const std::vector<Chunk> chunks = PlanCaptureChunks(capture, options, args.chunk_frames);
-    if (chunks.size() > 1) return true;
-  }
+  return chunked && PlanCaptureChunks(capture, options, args.chunk_frames).size() > 1;
+}
+
+// Whether a later GOP of a given first keyframe may retrain its keyframe: retraining takes the
+// automatic prune share, bits and rate weight (not the start share), so they are chosen too.
+bool RetrainsGivenKeyframe(const EncodeArguments& args, const Capture& capture,
+                           const EncoderOptions& options) {
+  if (args.keyframe_source || args.keyframe_ply.empty()) return false;
   const int left = capture.frame_count - options.first_frame;
   const int frames = options.frame_count > 0 ? std::min(options.frame_count, left) : left;
   return GopPolicy(options).MayRestart(options.first_frame, frames);
@@ -74,21 +77,25 @@ std::vector<KeyframeBitsCandidate> EncodeKeyframeBits(const EncodeArguments& arg
 
 Status ResolveAutomaticChoices(const EncodeArguments& args, const Capture& capture,
                                EncoderOptions* options, AutomaticChoices* choices) {
-  choices->trains_keyframe = TrainsKeyframe(args, capture, *options);
+  choices->from_scratch = TrainsFromScratch(args, capture, *options);
+  choices->trains_keyframe =
+      choices->from_scratch || RetrainsGivenKeyframe(args, capture, *options);
+  PruneShareArguments prune = args.prune;
+  if (!choices->from_scratch) prune.sweep_share = options->keyframe.sweep_share;  // unused
   Status status = Status::Ok();
-  const bool automatic_shares = args.prune.Automatic() || args.prune.StartAutomatic();
-  if (CurrentRanks().rank == 0 && choices->trains_keyframe && !args.keyframe_ply.empty() &&
-      (automatic_shares || args.keyframe_rate.automatic)) {
+  if (CurrentRanks().rank == 0 && choices->trains_keyframe && !choices->from_scratch &&
+      (prune.Automatic() || args.keyframe_rate.automatic)) {
     std::printf(
-        "%s is given, but later keyframes may be trained: the automatic keyframe "
+        "%s is given, but later GOPs may retrain their keyframes: the automatic keyframe "
         "choices are made on frame %d (give --prune-share and --keyframe-rate-weight "
         "to skip them)\n",
         args.keyframe_ply.c_str(), options->first_frame);
   }
-  if (CurrentRanks().rank == 0 && choices->trains_keyframe && automatic_shares) {
+  if (CurrentRanks().rank == 0 && choices->trains_keyframe &&
+      (prune.Automatic() || prune.StartAutomatic())) {
     KeyframeTrainingOptions first = FirstKeyframeTraining(*options);
     KeyframeShareChoice chosen;
-    status = ResolveKeyframeShares(capture, options->first_frame, args.prune, &first, &chosen);
+    status = ResolveKeyframeShares(capture, options->first_frame, prune, &first, &chosen);
     options->keyframe.sweep_share = first.sweep_share;
     options->keyframe.importance_prune_share = first.importance_prune_share;
     choices->start = chosen.start;

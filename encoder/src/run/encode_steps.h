@@ -30,6 +30,7 @@ Status ChooseUpAxis(const std::string& up, const Capture& capture, EncoderOption
 // unless given, a later chunk's, or a GOP's retrained one).
 struct AutomaticChoices {
   bool trains_keyframe = false;
+  bool from_scratch = false;  // a keyframe is trained from scratch: the start share is chosen
   StartSizeChoice start;
   PruneShareChoice prune;
   KeyframeBitsChoice bits;

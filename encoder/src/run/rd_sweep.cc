@@ -186,8 +186,10 @@ Status PrepareSharedKeyframe(const SweepOutput& out, EncodeArguments* args) {
   const bool automatic = args->prune.Automatic() || args->prune.StartAutomatic();
   Capture capture;
   if (!args->keyframe_ply.empty()) {
-    // A given keyframe still has its GOPs' keyframes retrained with the shares.
-    if (!automatic) return Status::Ok();
+    // A given keyframe still has its GOPs' keyframes retrained with the prune share; none is
+    // trained from scratch, so the start share goes unused.
+    if (!args->prune.Automatic()) return Status::Ok();
+    args->prune.sweep_share = SweepKeyframeTraining(*args).sweep_share;
     M4D_RETURN_IF_ERROR(OpenCapture(args->capture, &capture));
     return ResolveSweepShares(capture, args);
   }
