@@ -48,9 +48,9 @@ test('SplatFrameMaker sends the static layer when it changes: first frame, stati
   const maker = new SplatFrameMaker();
   const made = [];
   for (let f; (f = decoder.nextFrame());) made.push(maker.make(f));
-  // GOPs of 2; frames 2 and 4 are keyframes with a STATIC_UPDATE (843, 999, 1183 static Gaussians).
+  // GOPs of 2; frames 2 and 4 are keyframes with a STATIC_UPDATE (843, 990, 1230 static Gaussians).
   assert.deepEqual(made.map((f) => f.staticChanged), [true, false, true, false, true, false]);
-  assert.deepEqual(made.filter((f) => f.static).map((f) => f.static.count), [843, 999, 1183]);
+  assert.deepEqual(made.filter((f) => f.static).map((f) => f.static.count), [843, 990, 1230]);
   assert.ok(layersEqual(maker.lastStatic, made[4].static));
   assert.notEqual(maker.lastStatic.positions.buffer, made[4].static.positions.buffer);  // its own copy
   // After a seek the next frame carries its static layer even when it did not change.
@@ -89,7 +89,7 @@ test('DecoderFrameSource feeds PlayerCore from a main-thread decoder', async () 
   const again = core.tick(100);
   assert.equal(again.frameIndex, 3);
   assert.equal(again.staticChanged, true);
-  assert.equal(again.static.count, 999);
+  assert.equal(again.static.count, 990);
   assert.throws(() => new DecoderFrameSource({}), /needs nextFrame\(\) and seek\(\)/);
   decoder.close();
 });

@@ -128,6 +128,12 @@ Status MotionEstimator::Estimate(const TrainingViews& views, const GaussianSet& 
   BuildMotionStencil(config_, box, dynamic_set.positions.data(), n, &stencil);
   result->box = box;
 
+  // Each frame fits its own entropy model from the prior (a peak at zero), as the stream codes
+  // each grid with its own histogram. Carried over from the last frame, the model had widened to
+  // its non-zero values, which then cost little in the rate term: more of them, a wider model
+  // again, and a GOP's inter frames grew 1.5x on Panoptic
+  // (docs/results/2026-11-30-entropy-model-per-frame.md).
+  entropy_ = LogisticEntropyModel(config_.feature_count());
   MotionParameters params;
   ZeroGrid(config_, stencil, &params);
   if (options.warm_start) {
